@@ -1,0 +1,40 @@
+// refract experiment NAME -o DIR
+#include <filesystem>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "experiments/experiment.h"
+
+namespace {
+
+struct Args {
+    std::string name, out;
+    int threads = 0;
+    bool quick = false;
+    bool list = false;
+};
+
+refract::cli::Registrar reg{20, [](CLI::App& app) {
+    auto a = std::make_shared<Args>();
+    std::string help = "Run one experiment driver: CSV, figures and summary.md into DIR";
+    auto* sub = app.add_subcommand("experiment", help);
+    sub->add_option("name", a->name, "Experiment name (--list shows them)");
+    sub->add_option("-o,--output", a->out, "Output directory");
+    sub->add_option("--threads", a->threads, "Worker threads (0: all cores)");
+    sub->add_flag("--quick", a->quick, "Smaller images and fewer samples (smoke runs)");
+    sub->add_flag("--list", a->list, "List the experiments");
+    sub->callback([a] {
+        namespace ex = refract::experiments;
+        if (a->list || a->name.empty()) {
+            for (const auto& e : ex::all()) std::cout << e.name << "\t" << e.description << "\n";
+            return;
+        }
+        const auto& e = ex::find(a->name);
+        if (a->out.empty()) a->out = "out/" + e.name;
+        std::filesystem::create_directories(a->out);
+        e.run({a->out, a->threads, a->quick});
+        std::cout << e.name << ": results in " << a->out << "\n";
+    });
+}};
+
+}  // namespace

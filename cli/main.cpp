@@ -1,0 +1,46 @@
+// refract: the command line over the geometry, core, validation and experiment libraries.
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <unistd.h>
+
+#include "cli/commands.h"
+#include "geometry/error.h"
+
+namespace refract::cli {
+
+std::vector<Entry>& registry() {
+    static std::vector<Entry> entries;
+    return entries;
+}
+
+Registrar::Registrar(int order, std::function<void(CLI::App&)> add) {
+    registry().push_back({order, std::move(add)});
+}
+
+bool stderr_is_terminal() { return isatty(STDERR_FILENO) != 0; }
+
+}  // namespace refract::cli
+
+int main(int argc, char** argv) {
+    CLI::App app{"refract: a research toolkit for the physics of refraction in rendering"};
+    app.require_subcommand(1);
+    auto entries = refract::cli::registry();
+    std::sort(entries.begin(), entries.end(),
+              [](const auto& a, const auto& b) { return a.order < b.order; });
+    for (const auto& e : entries) e.add(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    } catch (const refract::InputError& e) {
+        std::cerr << "refract: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "refract: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,36 @@
+// refract render SCENE.json -o IMAGE [--threads N] [--stats]
+#include <iostream>
+
+#include "cli/commands.h"
+#include "core/render.h"
+#include "core/scene_json.h"
+
+namespace {
+
+struct RenderArgs {
+    std::string scene, output;
+    int threads = 0;
+    bool stats = false;
+    bool linear16 = false;
+};
+
+refract::cli::Registrar reg{10, [](CLI::App& app) {
+    auto args = std::make_shared<RenderArgs>();
+    auto* sub = app.add_subcommand("render", "Render a scene file to an image (.exr linear, .png sRGB)");
+    sub->add_option("scene", args->scene, "Scene file (JSON, see docs/scene-format.md)")->required();
+    sub->add_option("-o,--output", args->output, "Output image; the extension picks the format")->required();
+    sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it");
+    sub->add_flag("--stats", args->stats, "Print ray, tree and list counters");
+    sub->add_flag("--linear16", args->linear16, "PNG output as 16-bit linear instead of 8-bit sRGB");
+    sub->callback([args] {
+        const refract::Scene scene = refract::load_scene(args->scene);
+        refract::RenderOptions opt;
+        opt.threads = args->threads;
+        opt.progress = refract::cli::stderr_is_terminal();
+        const auto result = refract::render(scene, opt);
+        refract::write_image(args->output, result.image, {args->linear16});
+        if (args->stats) std::cout << result.stats.summary();
+    });
+}};
+
+}  // namespace

@@ -1,0 +1,39 @@
+#include "core/camera.h"
+
+#include <cmath>
+
+namespace refract {
+
+Camera::Basis Camera::basis() const {
+    // POV-Ray Parse_Camera with look_at: D̂ = normalize(look_at − location),
+    // R = |right|·normalize(sky × D̂), U = |up|·(D̂ × R̂), right = x·W/H, up = y.
+    const double aspect = static_cast<double>(width) / height;
+    const Vec3 d = (look_at - location).normalized();
+    const Vec3 r = sky.cross(d).normalized();
+    const Vec3 u = d.cross(r);
+    Basis b;
+    if (type == Type::Perspective) {
+        const double right_len = aspect;
+        // |D| = |right| / tan(A·π/360) / 2.
+        const double d_len = right_len / std::tan(angle_deg * M_PI / 360.0) / 2.0;
+        b.D = d * d_len;
+        b.R = r * right_len;
+        b.U = u;
+    } else {
+        b.D = d;
+        b.R = r * (ortho_height * aspect);
+        b.U = u * ortho_height;
+    }
+    return b;
+}
+
+Ray Camera::ray(double x, double y) const {
+    const Basis b = basis();
+    const double x0 = x / width - 0.5;
+    const double y0 = 0.5 - y / height;
+    if (type == Type::Perspective)
+        return Ray{location, (b.D + x0 * b.R + y0 * b.U).normalized()};
+    return Ray{location + x0 * b.R + y0 * b.U, b.D};
+}
+
+}  // namespace refract

@@ -1,0 +1,104 @@
+#include "core/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "geometry/error.h"
+
+namespace refract {
+
+double srgb_encode(double linear) {
+    // IEC 61966-2-1.
+    const double c = std::clamp(linear, 0.0, 1.0);
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+}  // namespace
+
+void write_image(const std::string& path, const Image& img, const WriteOptions& opt) {
+    if (img.width <= 0 || img.height <= 0) throw InputError(path + ": cannot write an empty image");
+    const std::string ext = lower_extension(path);
+    const bool linear_float = ext == ".exr" || ext == ".hdr" || ext == ".pfm" || ext == ".tif" || ext == ".tiff";
+    const bool encoded = ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".bmp";
+    if (!linear_float && !encoded)
+        throw InputError(path + ": unknown image extension '" + ext +
+                         "' (use .exr, .hdr, .pfm, .tif for linear, .png, .jpg, .ppm for sRGB)");
+    const size_t n = img.rgb.size();
+    OIIO::ImageSpec spec;
+    std::vector<float> fbuf;
+    std::vector<unsigned short> sbuf;
+    std::vector<unsigned char> bbuf;
+    const void* data = nullptr;
+    if (linear_float) {
+        spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT);
+        fbuf.resize(n);
+        for (size_t k = 0; k < n; ++k) fbuf[k] = static_cast<float>(img.rgb[k]);
+        data = fbuf.data();
+    } else if (ext == ".png" && opt.linear16) {
+        spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::UINT16);
+        spec.attribute("oiio:ColorSpace", "Linear");
+        sbuf.resize(n);
+        for (size_t k = 0; k < n; ++k)
+            sbuf[k] = static_cast<unsigned short>(std::lround(std::clamp(img.rgb[k], 0.0, 1.0) * 65535.0));
+        data = sbuf.data();
+    } else {
+        spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", "sRGB");
+        bbuf.resize(n);
+        for (size_t k = 0; k < n; ++k)
+            bbuf[k] = static_cast<unsigned char>(std::lround(srgb_encode(img.rgb[k]) * 255.0));
+        data = bbuf.data();
+    }
+    // Temporary name keeps the extension so OpenImageIO picks the right writer.
+    const std::filesystem::path target(path);
+    const std::filesystem::path tmp =
+        target.parent_path() / (".tmp-" + target.stem().string() + "-" + std::to_string(::getpid()) + ext);
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    if (!out) throw InputError(path + ": no image writer for this extension");
+    const bool ok = out->open(tmp.string(), spec) && out->write_image(spec.format, data) && out->close();
+    if (!ok) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw InputError(path + ": cannot write image: " + out->geterror());
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, target, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        throw InputError(path + ": cannot write image: " + ec.message());
+    }
+}
+
+Image read_image(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    Image img(spec.width, spec.height);
+    std::vector<float> buf(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
+        throw InputError(path + ": cannot read image: " + in->geterror());
+    for (int j = 0; j < spec.height; ++j)
+        for (int i = 0; i < spec.width; ++i) {
+            const size_t k = (static_cast<size_t>(j) * spec.width + i) * spec.nchannels;
+            const double r = buf[k];
+            const double g = spec.nchannels >= 3 ? buf[k + 1] : r;
+            const double b = spec.nchannels >= 3 ? buf[k + 2] : r;
+            img.set(i, j, {r, g, b});
+        }
+    return img;
+}
+
+}  // namespace refract

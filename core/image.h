@@ -1,0 +1,45 @@
+#pragma once
+// Linear RGB images in double precision; files go through OpenImageIO. The format is
+// chosen by the extension: .exr (linear, float), .png/.jpg/.tif... (sRGB-encoded 8-bit,
+// or 16-bit for .png with `linear16`), .hdr/.pfm (linear).
+#include <string>
+#include <vector>
+
+#include "geometry/ray.h"
+
+namespace refract {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<double> rgb;  // row-major, 3 per pixel, row 0 at the top
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgb(static_cast<size_t>(w) * h * 3, 0.0) {}
+    Vec3 at(int i, int j) const {
+        const size_t k = (static_cast<size_t>(j) * width + i) * 3;
+        return {rgb[k], rgb[k + 1], rgb[k + 2]};
+    }
+    void set(int i, int j, const Vec3& c) {
+        const size_t k = (static_cast<size_t>(j) * width + i) * 3;
+        rgb[k] = c.x(); rgb[k + 1] = c.y(); rgb[k + 2] = c.z();
+    }
+};
+
+struct WriteOptions {
+    bool linear16 = false;  // .png only: 16-bit linear instead of 8-bit sRGB
+};
+
+// Writes to a temporary name beside `path`, then renames: never a half-written file.
+// Throws InputError naming the path on failure (unknown extension, unwritable).
+void write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
+
+// Reads any image OpenImageIO can read, as stored (integer formats scaled to [0, 1],
+// no transfer function applied: POV-Ray's File_Gamma=1.0 PNGs are linear as read).
+// Throws InputError naming the path.
+Image read_image(const std::string& path);
+
+// sRGB transfer function (IEC 61966-2-1), linear → encoded, clamped to [0, 1].
+double srgb_encode(double linear);
+
+}  // namespace refract

@@ -1,0 +1,136 @@
+#include "core/render.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <sstream>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/integrators/fresnel_tree.h"
+#include "core/integrators/stochastic.h"
+#include "core/integrators/whitted.h"
+#include "core/random.h"
+#include "core/tracer.h"
+#include "geometry/error.h"
+
+namespace refract {
+
+void RenderStats::merge(const RenderStats& o) {
+    primary_rays += o.primary_rays;
+    segments += o.segments;
+    shadow_rays += o.shadow_rays;
+    tree_nodes += o.tree_nodes;
+    pruned += o.pruned;
+    depth_limited += o.depth_limited;
+    peak_list = std::max(peak_list, o.peak_list);
+}
+
+std::string RenderStats::summary() const {
+    std::ostringstream s;
+    s << "primary rays      " << primary_rays << "\n"
+      << "ray segments      " << segments << "\n"
+      << "shadow rays       " << shadow_rays << "\n"
+      << "tree nodes        " << tree_nodes << "\n"
+      << "pruned branches   " << pruned << "\n"
+      << "depth-limited     " << depth_limited << "\n"
+      << "peak list / tree  " << peak_list << "\n"
+      << "wall time (s)     " << seconds << "\n";
+    if (seconds > 0) s << "segments/s        " << static_cast<double>(segments) / seconds << "\n";
+    return s.str();
+}
+
+namespace {
+
+void validate(const Scene& scene) {
+    const std::string& f = scene.source.empty() ? std::string("scene") : scene.source;
+    if (scene.camera.width <= 0 || scene.camera.height <= 0)
+        throw InputError(f + ": /camera: image size must be positive");
+    for (size_t k = 0; k < scene.objects.size(); ++k)
+        if (scene.objects[k].material < 0 || scene.objects[k].material >= static_cast<int>(scene.materials.size()))
+            throw InputError(f + ": /objects/" + std::to_string(k) + "/material: no such material");
+    for (const Material& m : scene.materials)
+        if (m.kind == MaterialKind::Dielectric && !(m.ior > 0 && std::isfinite(m.ior)))
+            throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
+}
+
+Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats) {
+    const Scene& scene = tracer.scene();
+    const RenderSettings& s = scene.settings;
+    const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
+    Vec3 sum(0, 0, 0);
+    for (int k = 0; k < s.samples; ++k) {
+        Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
+        double x = i + 0.5, y = j + 0.5;
+        if (s.jitter) {
+            x = i + rng.uniform();
+            y = j + rng.uniform();
+        }
+        const Ray ray = scene.camera.ray(x, y);
+        ++stats.primary_rays;
+        switch (s.integrator) {
+            case IntegratorKind::Whitted: sum += whitted_radiance(tracer, ray, stats); break;
+            case IntegratorKind::FresnelTree: sum += fresnel_tree_radiance(tracer, ray, stats); break;
+            case IntegratorKind::Stochastic: sum += stochastic_radiance(tracer, ray, rng, stats); break;
+        }
+    }
+    return sum / s.samples;
+}
+
+}  // namespace
+
+Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
+    validate(scene);
+    SceneTracer tracer(scene);
+    RenderStats local;
+    const Vec3 v = pixel_value(tracer, i, j, local);
+    if (stats) stats->merge(local);
+    return v;
+}
+
+RenderResult render(const Scene& scene, const RenderOptions& opt) {
+    validate(scene);
+    const auto t0 = std::chrono::steady_clock::now();
+    SceneTracer tracer(scene);
+    const int W = scene.camera.width, H = scene.camera.height;
+    RenderResult result{Image(W, H), {}};
+    constexpr int kTile = 16;
+    const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
+    std::vector<RenderStats> tile_stats(static_cast<size_t>(tiles_x) * tiles_y);
+    std::atomic<int> done{0};
+    std::mutex print;
+    const int total = tiles_x * tiles_y;
+    auto body = [&](const tbb::blocked_range2d<int>& r) {
+        for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty)
+            for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
+                RenderStats& st = tile_stats[static_cast<size_t>(ty) * tiles_x + tx];
+                for (int j = ty * kTile; j < std::min(H, (ty + 1) * kTile); ++j)
+                    for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i)
+                        result.image.set(i, j, pixel_value(tracer, i, j, st));
+                const int d = ++done;
+                if (opt.progress) {
+                    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                    if (el > 1.0 && (d % std::max(1, total / 100) == 0 || d == total)) {
+                        std::lock_guard<std::mutex> lock(print);
+                        const int width = 40, fill = width * d / total;
+                        std::fprintf(stderr, "\r[%s%s] %3d%% %.1fs", std::string(fill, '#').c_str(),
+                                     std::string(width - fill, ' ').c_str(), 100 * d / total, el);
+                        if (d == total) std::fprintf(stderr, "\n");
+                    }
+                }
+            }
+    };
+    const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena arena(threads);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), body); });
+    for (const auto& st : tile_stats) result.stats.merge(st);
+    result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+}  // namespace refract

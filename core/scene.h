@@ -1,0 +1,99 @@
+#pragma once
+// The in-memory scene: what a scene file (docs/scene-format.md) describes.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "core/camera.h"
+#include "geometry/shapes.h"
+
+namespace refract {
+
+enum class MaterialKind {
+    Diffuse,     // POV-Ray convention: ambient·pigment + Σ diffuse·pigment·light·max(0, N·L)
+    Mirror,      // perfect mirror, reflectivity `color`
+    Dielectric,  // smooth transparent interface, index `ior`, reflectance model below
+    Lambertian,  // RTIOW: random diffuse bounce with albedo `color` (stochastic integrator)
+    Metal,       // RTIOW: reflection with fuzz, albedo `color`
+    Emissive,    // highlight light: a sphere that shines `color` (tens of times brighter)
+};
+
+enum class ReflectanceModel {
+    Constant,  // Whitted: ks = constant_reflectivity, kt = 1 − ks
+    Fresnel,   // exact, natural light (Yasuda eq. 7)
+    FresnelS,  // s-polarised only
+    FresnelP,  // p-polarised only
+    Schlick,   // RTIOW approximation
+};
+
+struct Checker {
+    Vec3 color2{0, 0, 0};  // the second colour; the first is the material's `color`
+    double size = 1;       // edge of one square (3D checker as in POV-Ray)
+};
+
+struct Material {
+    std::string name;
+    MaterialKind kind = MaterialKind::Diffuse;
+    Vec3 color{1, 1, 1};             // pigment / albedo / reflectivity tint / emission
+    std::optional<Checker> checker;  // Diffuse and Lambertian only
+    double diffuse = 1.0;            // POV-Ray `diffuse`
+    double ambient = 0.0;            // POV-Ray `ambient` (Whitted's Ia term)
+    double ior = 1.5;                // Dielectric: index relative to the surrounding air
+    ReflectanceModel reflectance = ReflectanceModel::Fresnel;
+    double constant_reflectivity = 0.0;  // Constant model
+    Vec3 filter{1, 1, 1};                // Dielectric: transmitted colour per crossing
+    double fuzz = 0.0;                   // Metal
+    std::string dispersion;              // Dielectric: catalogue name or model (spectral)
+};
+
+using Shape = std::variant<Sphere, Plane, TriangleMesh, ConvexPolyhedron>;
+
+struct Object {
+    std::string name;
+    Shape shape;
+    int material = 0;  // index into Scene::materials
+};
+
+struct PointLight {
+    Vec3 position{0, 10, 0};
+    Vec3 color{1, 1, 1};  // no distance falloff (POV-Ray default)
+};
+
+struct Background {
+    enum class Kind { Solid, Gradient };  // Gradient: RTIOW sky, lerp on 0.5(dir.y + 1)
+    Kind kind = Kind::Solid;
+    Vec3 color{0, 0, 0};     // Solid
+    Vec3 bottom{1, 1, 1};    // Gradient at dir.y = −1
+    Vec3 top{0.5, 0.7, 1.0}; // Gradient at dir.y = +1
+};
+
+enum class IntegratorKind { Whitted, FresnelTree, Stochastic };
+enum class Compat { Physical, PovRay };
+
+struct RenderSettings {
+    IntegratorKind integrator = IntegratorKind::FresnelTree;
+    // Longest path: a ray spawned after `max_depth` surface interactions is not traced
+    // (returns black). POV-Ray's max_trace_level = max_depth + 1.
+    int max_depth = 16;
+    // Yasuda's cumulative-attenuation threshold (POV-Ray adc_bailout): a branch whose
+    // weight falls below it is dropped. 0 keeps every branch.
+    double threshold = 1.0 / 255.0;
+    int samples = 1;          // samples per pixel
+    bool jitter = false;      // jittered supersampling inside the pixel
+    std::uint64_t seed = 1;   // stochastic integrator and jitter
+    Compat compat = Compat::Physical;
+};
+
+struct Scene {
+    std::string source;  // file the scene came from (for messages)
+    Camera camera;
+    std::vector<Material> materials;
+    std::vector<Object> objects;
+    std::vector<PointLight> lights;
+    Background background;
+    RenderSettings settings;
+};
+
+}  // namespace refract

@@ -1,0 +1,290 @@
+#include "core/scene_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/json_reader.h"
+#include "geometry/error.h"
+
+namespace refract {
+namespace {
+
+using nlohmann::json;
+
+Camera parse_camera(const JsonReader& r) {
+    r.only({"type", "location", "look_at", "sky", "angle", "vfov", "ortho_height", "width", "height"});
+    Camera c;
+    const std::string type = r.string("type", "perspective");
+    if (type == "perspective") c.type = Camera::Type::Perspective;
+    else if (type == "orthographic") c.type = Camera::Type::Orthographic;
+    else r.fail_at("type", "unknown camera type '" + type + "' (perspective, orthographic)");
+    c.location = r.vec3("location", c.location);
+    c.look_at = r.vec3("look_at", c.look_at);
+    c.sky = r.vec3("sky", c.sky);
+    c.width = r.integer("width", c.width, 1, 1 << 15);
+    c.height = r.integer("height", c.height, 1, 1 << 15);
+    if ((c.look_at - c.location).norm() == 0) r.fail_at("look_at", "must differ from location");
+    if (c.sky.cross(c.look_at - c.location).norm() == 0) r.fail_at("sky", "must not be parallel to the view direction");
+    if (r.has("angle") && r.has("vfov")) r.fail_at("vfov", "give either angle (horizontal) or vfov (vertical)");
+    if (r.has("vfov")) {
+        // RTIOW's vertical field of view, converted to POV-Ray's horizontal angle.
+        const double v = r.number("vfov");
+        if (!(v > 0 && v < 180)) r.fail_at("vfov", "must be in (0, 180) degrees");
+        const double aspect = static_cast<double>(c.width) / c.height;
+        c.angle_deg = 2.0 * std::atan(std::tan(v * M_PI / 360.0) * aspect) * 180.0 / M_PI;
+    } else {
+        c.angle_deg = r.number("angle", c.angle_deg);
+        if (!(c.angle_deg > 0 && c.angle_deg < 180)) r.fail_at("angle", "must be in (0, 180) degrees");
+    }
+    c.ortho_height = r.positive("ortho_height", c.ortho_height);
+    return c;
+}
+
+Background parse_background(const json& v, const std::string& file) {
+    Background b;
+    if (v.is_array()) {
+        b.color = JsonReader::vec3_value(v, file, "/background");
+        return b;
+    }
+    JsonReader r(v, file, "/background");
+    r.only({"type", "color", "top", "bottom"});
+    const std::string type = r.string("type", "solid");
+    if (type == "solid") {
+        b.color = r.vec3("color", b.color);
+    } else if (type == "gradient") {
+        b.kind = Background::Kind::Gradient;
+        b.top = r.vec3("top", b.top);
+        b.bottom = r.vec3("bottom", b.bottom);
+    } else {
+        r.fail_at("type", "unknown background type '" + type + "' (solid, gradient)");
+    }
+    return b;
+}
+
+Material parse_material(const JsonReader& r, const std::string& name) {
+    Material m;
+    m.name = name;
+    const std::string type = r.string("type");
+    if (type == "diffuse") {
+        r.only({"type", "color", "checker", "diffuse", "ambient"});
+        m.kind = MaterialKind::Diffuse;
+        m.diffuse = r.number("diffuse", 1.0);
+        m.ambient = r.number("ambient", 0.0);
+    } else if (type == "lambertian") {
+        r.only({"type", "color", "checker"});
+        m.kind = MaterialKind::Lambertian;
+    } else if (type == "mirror") {
+        r.only({"type", "color"});
+        m.kind = MaterialKind::Mirror;
+    } else if (type == "metal") {
+        r.only({"type", "color", "fuzz"});
+        m.kind = MaterialKind::Metal;
+        m.fuzz = r.number("fuzz", 0.0);
+        if (m.fuzz < 0 || m.fuzz > 1) r.fail_at("fuzz", "must be in [0, 1]");
+    } else if (type == "emissive") {
+        r.only({"type", "color"});
+        m.kind = MaterialKind::Emissive;
+    } else if (type == "dielectric") {
+        r.only({"type", "ior", "reflectance", "reflectivity", "filter", "dispersion"});
+        m.kind = MaterialKind::Dielectric;
+        m.ior = r.number("ior", 1.5);
+        if (!(m.ior > 0)) r.fail_at("ior", "must be > 0 (got " + std::to_string(m.ior) + ")");
+        const std::string model = r.string("reflectance", "fresnel");
+        static const std::map<std::string, ReflectanceModel> models{
+            {"constant", ReflectanceModel::Constant}, {"fresnel", ReflectanceModel::Fresnel},
+            {"fresnel-s", ReflectanceModel::FresnelS}, {"fresnel-p", ReflectanceModel::FresnelP},
+            {"schlick", ReflectanceModel::Schlick}};
+        const auto it = models.find(model);
+        if (it == models.end())
+            r.fail_at("reflectance", "unknown model '" + model + "' (constant, fresnel, fresnel-s, fresnel-p, schlick)");
+        m.reflectance = it->second;
+        if (m.reflectance == ReflectanceModel::Constant) {
+            m.constant_reflectivity = r.number("reflectivity");
+            if (m.constant_reflectivity < 0 || m.constant_reflectivity > 1)
+                r.fail_at("reflectivity", "must be in [0, 1]");
+        } else if (r.has("reflectivity")) {
+            r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
+        }
+        m.filter = r.vec3("filter", m.filter);
+        m.dispersion = r.string("dispersion", "");
+        return m;
+    } else {
+        r.fail_at("type", "unknown material type '" + type +
+                              "' (diffuse, lambertian, mirror, metal, emissive, dielectric)");
+    }
+    m.color = r.vec3("color", m.color);
+    for (int k = 0; k < 3; ++k)
+        if (m.color[k] < 0) r.fail_at("color", "components must be >= 0");
+    if (r.has("checker")) {
+        const JsonReader c = r.child("checker");
+        c.only({"color2", "size"});
+        m.checker = Checker{c.vec3("color2", Vec3(0, 0, 0)), c.positive("size", 1.0)};
+    }
+    return m;
+}
+
+int material_ref(const JsonReader& o, std::vector<Material>& materials, const std::map<std::string, int>& by_name) {
+    const auto& v = o.raw("material");
+    if (v.is_string()) {
+        const auto it = by_name.find(v.get<std::string>());
+        if (it == by_name.end()) o.fail_at("material", "unknown material '" + v.get<std::string>() + "'");
+        return it->second;
+    }
+    if (!v.is_object()) o.fail_at("material", "must be a material name or a material object");
+    materials.push_back(parse_material(o.child("material"), o.path_of("material")));
+    return static_cast<int>(materials.size()) - 1;
+}
+
+Shape parse_shape(const JsonReader& o, const std::string& type) {
+    if (type == "sphere") {
+        o.only({"type", "name", "material", "center", "radius"});
+        const double radius = o.number("radius");
+        if (radius == 0) o.fail_at("radius", "must be non-zero (negative: hollow, normals flipped)");
+        return Sphere{o.vec3("center"), radius};
+    }
+    if (type == "plane") {
+        o.only({"type", "name", "material", "normal", "offset"});
+        const Vec3 n = o.vec3("normal");
+        if (n.norm() == 0) o.fail_at("normal", "must be non-zero");
+        return Plane{n.normalized(), o.number("offset", 0.0) };
+    }
+    if (type == "mesh") {
+        o.only({"type", "name", "material", "vertices", "triangles"});
+        TriangleMesh m;
+        const auto& vs = o.raw("vertices");
+        const auto& ts = o.raw("triangles");
+        if (!vs.is_array() || vs.size() < 3) o.fail_at("vertices", "must be an array of at least 3 points");
+        if (!ts.is_array() || ts.empty()) o.fail_at("triangles", "must be a non-empty array of index triples");
+        for (size_t k = 0; k < vs.size(); ++k)
+            m.vertices.push_back(JsonReader::vec3_value(vs[k], "", o.path_of("vertices") + "/" + std::to_string(k)));
+        for (size_t k = 0; k < ts.size(); ++k) {
+            const auto& t = ts[k];
+            const std::string p = o.path_of("triangles") + "/" + std::to_string(k);
+            if (!t.is_array() || t.size() != 3) o.fail("triangle " + p + " must be 3 vertex indices");
+            Eigen::Vector3i tri;
+            for (int c = 0; c < 3; ++c) {
+                if (!t[c].is_number_integer() || t[c].get<long long>() < 0 ||
+                    t[c].get<long long>() >= static_cast<long long>(vs.size()))
+                    o.fail("triangle " + p + ": indices must be integers in [0, " + std::to_string(vs.size() - 1) + "]");
+                tri[c] = t[c].get<int>();
+            }
+            if ((m.vertices[tri[1]] - m.vertices[tri[0]]).cross(m.vertices[tri[2]] - m.vertices[tri[0]]).norm() == 0)
+                o.fail("triangle " + p + " is degenerate (zero area)");
+            m.triangles.push_back(tri);
+        }
+        return m;
+    }
+    if (type == "polyhedron") {
+        o.only({"type", "name", "material", "planes", "labels"});
+        ConvexPolyhedron c;
+        const auto& ps = o.raw("planes");
+        if (!ps.is_array() || ps.size() < 4) o.fail_at("planes", "must be an array of at least 4 [nx, ny, nz, d]");
+        for (size_t k = 0; k < ps.size(); ++k) {
+            const auto& p = ps[k];
+            const std::string path = o.path_of("planes") + "/" + std::to_string(k);
+            bool ok = p.is_array() && p.size() == 4;
+            for (size_t q = 0; ok && q < 4; ++q) ok = p[q].is_number() && std::isfinite(p[q].get<double>());
+            if (!ok) o.fail("plane " + path + " must be [nx, ny, nz, d] with finite numbers");
+            const Vec3 n(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+            if (n.norm() == 0) o.fail("plane " + path + " has a zero normal");
+            c.planes.push_back(Plane{n.normalized(), p[3].get<double>() / n.norm()});
+        }
+        if (o.has("labels")) {
+            const auto& ls = o.raw("labels");
+            if (!ls.is_array() || ls.size() != ps.size()) o.fail_at("labels", "must be an array of one string per plane");
+            for (const auto& l : ls) c.labels.push_back(l.is_string() ? l.get<std::string>() : std::string());
+        }
+        return c;
+    }
+    o.fail_at("type", "unknown object type '" + type + "' (sphere, plane, mesh, polyhedron)");
+}
+
+RenderSettings parse_settings(const JsonReader& r) {
+    r.only({"integrator", "max_depth", "threshold", "samples", "jitter", "seed", "compat"});
+    RenderSettings s;
+    const std::string integ = r.string("integrator", "fresnel-tree");
+    if (integ == "whitted") s.integrator = IntegratorKind::Whitted;
+    else if (integ == "fresnel-tree") s.integrator = IntegratorKind::FresnelTree;
+    else if (integ == "stochastic") s.integrator = IntegratorKind::Stochastic;
+    else r.fail_at("integrator", "unknown integrator '" + integ + "' (whitted, fresnel-tree, stochastic)");
+    s.max_depth = r.integer("max_depth", s.max_depth, 0, 10000);
+    s.threshold = r.number("threshold", s.threshold);
+    if (s.threshold < 0 || s.threshold >= 1) r.fail_at("threshold", "must be in [0, 1)");
+    s.samples = r.integer("samples", s.samples, 1, 1 << 20);
+    s.jitter = r.boolean("jitter", s.jitter);
+    if (r.has("seed")) {
+        const auto& v = r.raw("seed");
+        if (!v.is_number_unsigned()) r.fail_at("seed", "must be a non-negative integer");
+        s.seed = v.get<std::uint64_t>();
+    }
+    const std::string compat = r.string("compat", "physical");
+    if (compat == "physical") s.compat = Compat::Physical;
+    else if (compat == "povray") s.compat = Compat::PovRay;
+    else r.fail_at("compat", "unknown mode '" + compat + "' (physical, povray)");
+    return s;
+}
+
+}  // namespace
+
+Scene parse_scene(const json& j, const std::string& file) {
+    JsonReader root(j, file, "");
+    if (!j.is_object()) root.fail("a scene must be a JSON object");
+    root.only({"camera", "background", "materials", "objects", "lights", "render", "description"});
+    Scene s;
+    s.source = file;
+    s.camera = parse_camera(root.child("camera"));
+    if (root.has("background")) s.background = parse_background(j.at("background"), file);
+    std::map<std::string, int> by_name;
+    if (root.has("materials")) {
+        const JsonReader ms = root.child("materials");
+        for (const auto& [name, value] : j.at("materials").items()) {
+            (void)value;
+            s.materials.push_back(parse_material(ms.child(name), name));
+            by_name[name] = static_cast<int>(s.materials.size()) - 1;
+        }
+    }
+    const auto& objs = root.raw("objects");
+    if (!objs.is_array()) root.fail_at("objects", "must be an array");
+    for (size_t k = 0; k < objs.size(); ++k) {
+        const JsonReader o(objs[k], file, "/objects/" + std::to_string(k));
+        if (!objs[k].is_object()) o.fail("must be an object");
+        Object obj;
+        obj.name = o.string("name", "object " + std::to_string(k));
+        obj.shape = parse_shape(o, o.string("type"));
+        obj.material = material_ref(o, s.materials, by_name);
+        s.objects.push_back(std::move(obj));
+    }
+    if (root.has("lights")) {
+        const auto& ls = root.raw("lights");
+        if (!ls.is_array()) root.fail_at("lights", "must be an array");
+        for (size_t k = 0; k < ls.size(); ++k) {
+            const JsonReader l(ls[k], file, "/lights/" + std::to_string(k));
+            if (!ls[k].is_object()) l.fail("must be an object");
+            l.only({"type", "position", "color"});
+            const std::string type = l.string("type", "point");
+            if (type != "point") l.fail_at("type", "unknown light type '" + type + "' (point)");
+            s.lights.push_back(PointLight{l.vec3("position"), l.vec3("color", Vec3(1, 1, 1))});
+        }
+    }
+    if (root.has("render")) s.settings = parse_settings(root.child("render"));
+    return s;
+}
+
+Scene load_scene(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open scene file");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::parse_error& e) {
+        // e.byte locates the error; the message says what was expected.
+        std::string what = e.what();
+        const auto pos = what.find("parse error");
+        throw InputError(path + ": malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+    }
+    return parse_scene(j, path);
+}
+
+}  // namespace refract

@@ -1,0 +1,67 @@
+#pragma once
+// The scene kernel shared by every integrator: nearest hit, background, local shading of
+// opaque surfaces (the leaves of the ray tree), and the branches a surface spawns (the
+// nodes). Integrators differ only in how they walk the branches.
+#include <array>
+#include <optional>
+
+#include "core/render.h"
+#include "core/scene.h"
+
+namespace refract {
+
+struct SurfaceHit {
+    Hit hit;
+    const Object* object = nullptr;
+    const Material* material = nullptr;
+    Vec3 normal;           // unit normal on the incident side (normal·dir < 0)
+    bool entering = true;  // the ray goes from outside to inside the object
+};
+
+// One branch of a ray-tree node: the new ray, its colour factor (reflectance,
+// transmittance × filter) and the factor the pruning threshold uses (Yasuda's
+// cumulative attenuation; POV-Ray's adc weight in compat mode).
+struct Branch {
+    Ray ray;
+    Vec3 factor;
+    double bailout_factor;
+};
+
+struct Node {
+    Vec3 local{0, 0, 0};        // light leaving the surface that needs no further ray
+    std::array<Branch, 2> branch;
+    int branches = 0;          // 0: a leaf
+    double reflectance = 0;    // dielectric: R used for the split (1 on TIR)
+};
+
+class SceneTracer {
+public:
+    explicit SceneTracer(const Scene& scene);
+
+    const Scene& scene() const { return scene_; }
+    const RenderSettings& settings() const { return scene_.settings; }
+
+    std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats) const;
+    Vec3 background(const Vec3& dir) const;
+
+    // Ray-tree node at a hit: leaves (diffuse, emissive) get `local`, mirrors one branch,
+    // dielectrics two (reflection, refraction) or one on total internal reflection.
+    Node node(const SurfaceHit& h, const Ray& ray, RenderStats& stats) const;
+
+    // Dielectric reflectance for the material's model at cos θi and relative index eta
+    // (Constant, Fresnel, Fresnel-s, Fresnel-p, Schlick); 1 on TIR for physical models.
+    static double reflectance(const Material& m, double cos_i, double eta);
+
+    // Direct lighting of an opaque surface by the point lights, POV-Ray convention:
+    // ambient·pigment + Σ diffuse·pigment·light·max(0, N·L)·shadow.
+    Vec3 shade_diffuse(const SurfaceHit& h, const Material& m, RenderStats& stats) const;
+    Vec3 pigment(const Material& m, const Vec3& p) const;
+
+    static constexpr double kEpsilon = 1e-6;  // secondary rays ignore hits closer than this
+
+private:
+    Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
+    const Scene& scene_;
+};
+
+}  // namespace refract

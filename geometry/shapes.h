@@ -1,0 +1,56 @@
+#pragma once
+// Shapes and their ray intersections. Every intersection returns the nearest hit with
+// t in (t_min, t_max) and the *outward* geometric normal of the surface (for a sphere of
+// negative radius the outward normal points to the centre: RTIOW's hollow sphere).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/ray.h"
+
+namespace refract {
+
+struct Hit {
+    double t = 0;
+    Vec3 point;
+    Vec3 normal;    // outward unit normal of the surface at the hit
+    int facet = -1; // facet / triangle index where the shape has facets, else -1
+};
+
+struct Sphere {
+    Vec3 center{0, 0, 0};
+    double radius = 1;  // negative: normals flipped (hollow sphere, RTIOW)
+};
+
+// Infinite plane {x : normal·x = offset}; outward side is where normal·x > offset.
+struct Plane {
+    Vec3 normal{0, 1, 0};  // unit
+    double offset = 0;
+};
+
+struct TriangleMesh {
+    std::vector<Vec3> vertices;
+    std::vector<Eigen::Vector3i> triangles;  // counter-clockwise seen from outside
+};
+
+// Convex polyhedron as an intersection of half-spaces normal_i·x <= offset_i
+// (unit outward normals). This is the representation gems use: the tracer sees only
+// plain double planes, whatever built them.
+struct ConvexPolyhedron {
+    std::vector<Plane> planes;
+    std::vector<std::string> labels;  // one per plane (facet names), may be empty
+};
+
+std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max);
+std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double t_max);
+std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, double t_max);
+std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);
+
+// Axis-aligned bounds (used for culling and for export); empty optional when unbounded.
+struct Bounds {
+    Vec3 lo, hi;
+};
+std::optional<Bounds> bounds(const Sphere& s);
+std::optional<Bounds> bounds(const TriangleMesh& m);
+
+}  // namespace refract
