@@ -5,11 +5,106 @@
 // refraction n_t / n_i, transmitted side over incident side. A ray entering glass of
 // index 1.5 from air has eta = 1.5; leaving it, eta = 1/1.5. cos_i is the cosine of the
 // angle of incidence, measured on the incident side, in [0, 1].
+#include <cmath>
 #include <optional>
 
 #include "geometry/ray.h"
 
 namespace refract::optics {
+
+// The laws written once over the scalar type S (and a 3-vector type V with Scalar,
+// dot(), squaredNorm(), +, −, S·V and V/S). The double functions further down are these
+// templates at S = double, V = Vec3; other scalar types (experiments count the
+// multiplications and divisions of a branching node with one) instantiate them as well.
+namespace generic {
+
+template <class S>
+struct FresnelTerms {
+    S Rs;     // s-polarised (TE) reflectance
+    S Rp;     // p-polarised (TM) reflectance
+    S cos_t;  // cosine of the refraction angle
+    S R() const { return S(0.5) * (Rs + Rp); }  // natural light, eq. 7
+    S T() const { return S(1.0) - R(); }        // eq. 8
+};
+
+template <class V>
+struct WhittedDirections {
+    V reflected;                   // R, not normalised (as in the paper)
+    std::optional<V> transmitted;  // P, not normalised; empty on TIR
+};
+
+// Snell's law: sin θt = sin θi / eta.
+template <class S>
+std::optional<S> cos_transmitted(S cos_i, S eta) {
+    using std::sqrt;
+    const S sin2_t = (S(1.0) - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= S(1.0)) return std::nullopt;
+    return sqrt(S(1.0) - sin2_t);
+}
+
+// Yasuda eq. 7 (n = eta, Ci = cos θi, Cr = cos θt): s and p amplitude ratios squared.
+template <class S>
+FresnelTerms<S> fresnel_terms(S cos_i, S cos_t, S eta) {
+    const S n_ct = eta * cos_t, n_ci = eta * cos_i;
+    const S rs = (cos_i - n_ct) / (cos_i + n_ct);
+    const S rp = (n_ci - cos_t) / (n_ci + cos_t);
+    return FresnelTerms<S>{rs * rs, rp * rp, cos_t};
+}
+
+template <class S>
+std::optional<FresnelTerms<S>> fresnel(S cos_i, S eta) {
+    const auto cos_t = cos_transmitted(cos_i, eta);
+    if (!cos_t) return std::nullopt;
+    return fresnel_terms(cos_i, *cos_t, eta);
+}
+
+template <class S>
+S fresnel_reflectance(S cos_i, S eta) {
+    const auto f = fresnel(cos_i, eta);
+    return f ? f->R() : S(1.0);
+}
+
+// RTIOW: R(θ) = R0 + (1 − R0)(1 − cos θ)^5, R0 = ((1 − η)/(1 + η))².
+template <class S>
+S schlick(S cos, S eta) {
+    using std::pow;
+    const S r0 = (S(1.0) - eta) / (S(1.0) + eta);
+    const S R0 = r0 * r0;
+    return R0 + (S(1.0) - R0) * pow(S(1.0) - cos, 5);
+}
+
+template <class V>
+V reflect(const V& d, const V& n) {
+    using S = typename V::Scalar;
+    return d - S(2.0) * d.dot(n) * n;
+}
+
+// RTIOW: R'⊥ = (η/η')(R + cosθ n), R'∥ = −sqrt(1 − |R'⊥|²) n, with η/η' = 1/eta.
+template <class V>
+std::optional<V> refract(const V& d, const V& n, typename V::Scalar eta) {
+    using S = typename V::Scalar;
+    using std::fmin;
+    const S cos_i = fmin(S(-d.dot(n)), S(1.0));
+    const auto cos_t = cos_transmitted(cos_i, eta);
+    if (!cos_t) return std::nullopt;
+    const V perp = (d + cos_i * n) / eta;
+    return V(perp - *cos_t * n);
+}
+
+// Yasuda et al. 1984 eq. 4, 2, 5, 3.
+template <class V>
+WhittedDirections<V> whitted_directions(const V& Vin, const V& N, typename V::Scalar eta) {
+    using S = typename V::Scalar;
+    using std::abs;
+    using std::sqrt;
+    const V Vp = Vin / abs(S(Vin.dot(N)));
+    WhittedDirections<V> out{Vp + S(2.0) * N, std::nullopt};
+    const S q = eta * eta * Vp.squaredNorm() - (Vp + N).squaredNorm();
+    if (q > S(0.0)) out.transmitted = (S(1.0) / sqrt(q)) * (N + Vp) - N;
+    return out;
+}
+
+}  // namespace generic
 
 // Mirror reflection of direction d about unit normal n (either orientation).
 Vec3 reflect(const Vec3& d, const Vec3& n);
@@ -22,10 +117,7 @@ std::optional<Vec3> refract(const Vec3& d, const Vec3& n, double eta);
 // Yasuda et al. 1984, eq. 2–5 (Whitted's form): V' = V/|V·N|, R = V' + 2N,
 // kf = (n²|V'|² − |V'+N|²)^(-1/2), P = kf (N + V') − N. Here V is the incident
 // direction, N the unit normal on the incident side, n = eta = n_t / n_i.
-struct WhittedDirections {
-    Vec3 reflected;                   // R, not normalised (as in the paper)
-    std::optional<Vec3> transmitted;  // P, not normalised; empty on TIR
-};
+using WhittedDirections = generic::WhittedDirections<Vec3>;
 WhittedDirections whitted_directions(const Vec3& V, const Vec3& N, double eta);
 
 // Snell's law: cos θt for the given cos θi; empty on total internal reflection.
@@ -33,13 +125,9 @@ std::optional<double> cos_transmitted(double cos_i, double eta);
 
 // Exact Fresnel reflectance of a smooth dielectric interface (Yasuda eq. 7; s and p
 // terms as in Born & Wolf). Empty on total internal reflection (R = 1 for both).
-struct FresnelTerms {
-    double Rs;     // s-polarised (TE) reflectance
-    double Rp;     // p-polarised (TM) reflectance
-    double cos_t;  // cosine of the refraction angle
-    double R() const { return 0.5 * (Rs + Rp); }  // natural light, eq. 7
-    double T() const { return 1.0 - R(); }        // eq. 8
-};
+// FresnelTerms: Rs (s-polarised, TE), Rp (p-polarised, TM), cos_t (refraction angle),
+// R() = (Rs + Rp)/2 for natural light (eq. 7), T() = 1 − R() (eq. 8).
+using FresnelTerms = generic::FresnelTerms<double>;
 std::optional<FresnelTerms> fresnel(double cos_i, double eta);
 
 // Unpolarised reflectance with TIR folded in (1 on total internal reflection).

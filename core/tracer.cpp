@@ -12,10 +12,12 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {}
 std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& stats) const {
     ++stats.segments;
     std::optional<SurfaceHit> best;
-    double t_max = std::numeric_limits<double>::infinity();
+    // POV-Ray keeps hits with kPovMinDepth <= t < kPovMaxDistance (every ray, primary too).
+    const bool pov = scene_.settings.compat == Compat::PovRay;
+    const double t_min = pov ? kPovMinDepth : kEpsilon;
+    double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
     for (const Object& obj : scene_.objects) {
-        const auto hit = std::visit([&](const auto& shape) { return refract::intersect(shape, ray, kEpsilon, t_max); },
-                                    obj.shape);
+        const auto hit = std::visit([&](const auto& s) { return refract::intersect(s, ray, t_min, t_max); }, obj.shape);
         if (!hit) continue;
         t_max = hit->t;
         best = SurfaceHit{*hit, &obj, &scene_.materials[obj.material], hit->normal, true};
@@ -39,10 +41,18 @@ Vec3 SceneTracer::pigment(const Material& m, const Vec3& p) const {
     // 3D checker (POV-Ray `checker`): parity of the sum of the cell indices. A small
     // offset keeps a surface lying on a cell boundary (a floor at y = 0) on one side.
     const double s = m.checker->size;
-    const double e = 1e-9;
-    const long long k = static_cast<long long>(std::floor(p.x() / s + e)) +
-                        static_cast<long long>(std::floor(p.y() / s + e)) +
-                        static_cast<long long>(std::floor(p.z() / s + e));
+    long long k;
+    if (scene_.settings.compat == Compat::PovRay) {
+        // POV-Ray `checker ... scale s` (pattern.cpp checker_pattern): the point is taken
+        // to pattern space by the inverse transform, a product with 1/s, then floor(v + 1e-10).
+        const Vec3 q = p * (1.0 / s);
+        k = static_cast<long long>(std::floor(q.x() + 1e-10)) + static_cast<long long>(std::floor(q.y() + 1e-10)) +
+            static_cast<long long>(std::floor(q.z() + 1e-10));
+    } else {
+        const double e = 1e-9;
+        k = static_cast<long long>(std::floor(p.x() / s + e)) + static_cast<long long>(std::floor(p.y() / s + e)) +
+            static_cast<long long>(std::floor(p.z() / s + e));
+    }
     return (k & 1) ? m.checker->color2 : m.color;
 }
 
@@ -53,24 +63,50 @@ Vec3 SceneTracer::light_transmittance(const Vec3& from, const Vec3& to, RenderSt
     // each crossing multiplies by the filter colour (clear glass casts no shadow).
     // Emissive highlight spheres never cast shadows (POV-Ray looks_like).
     ++stats.shadow_rays;
+    if (scene_.settings.compat == Compat::PovRay) return light_transmittance_pov(from, to);
     const Vec3 delta = to - from;
     const double dist = delta.norm();
     const Ray ray{from, delta / dist};
-    Vec3 t(1, 1, 1);
     for (const Object& obj : scene_.objects) {
         const Material& m = scene_.materials[obj.material];
         if (m.kind == MaterialKind::Emissive) continue;
-        const bool pass = m.kind == MaterialKind::Dielectric && scene_.settings.compat == Compat::PovRay;
-        double t_min = kEpsilon;
-        while (true) {
-            const auto hit = std::visit([&](const auto& s) { return refract::intersect(s, ray, t_min, dist); }, obj.shape);
-            if (!hit) break;
-            if (!pass) return Vec3(0, 0, 0);
-            t = t.cwiseProduct(m.filter);
-            t_min = hit->t;
-        }
+        const auto hit = std::visit([&](const auto& s) { return refract::intersect(s, ray, kEpsilon, dist); }, obj.shape);
+        if (hit) return Vec3(0, 0, 0);
     }
-    return t;
+    return Vec3(1, 1, 1);
+}
+
+Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) const {
+    // POV-Ray 3.7 point-light shadow ray (trace.cpp TracePointLightShadowRay): a straight
+    // ray; the nearest hit farther than kPovShadowTolerance from the current origin and
+    // nearer than kPovShadowTolerance to the light is taken; an opaque object blocks, a
+    // transparent one multiplies by its filter colour and the search goes on from that
+    // hit. no_shadow objects (the emissive highlight spheres) are not seen.
+    Vec3 origin = from;
+    double remaining = (to - from).norm();
+    const Vec3 dir = (to - from) / remaining;
+    Vec3 t(1, 1, 1);
+    while (true) {
+        const Ray ray{origin, dir};
+        std::optional<Hit> best;
+        const Material* best_m = nullptr;
+        double t_max = remaining;
+        for (const Object& obj : scene_.objects) {
+            const Material& m = scene_.materials[obj.material];
+            if (m.kind == MaterialKind::Emissive) continue;
+            const auto hit = std::visit(
+                [&](const auto& s) { return refract::intersect(s, ray, kPovShadowTolerance, t_max); }, obj.shape);
+            if (!hit) continue;
+            t_max = hit->t;
+            best = hit;
+            best_m = &m;
+        }
+        if (!best || best->t >= remaining - kPovShadowTolerance) return t;
+        if (best_m->kind != MaterialKind::Dielectric) return Vec3(0, 0, 0);
+        t = t.cwiseProduct(best_m->filter);
+        origin = best->point;
+        remaining -= best->t;
+    }
 }
 
 Vec3 SceneTracer::shade_diffuse(const SurfaceHit& h, const Material& m, RenderStats& stats) const {
@@ -118,28 +154,77 @@ Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats) 
             return n;
         case MaterialKind::Mirror:
         case MaterialKind::Metal:  // fuzz needs sampling: the tree takes the mirror direction
-            n.branch[0] = Branch{Ray{h.hit.point, optics::reflect(ray.dir, h.normal)}, m.color, m.color.maxCoeff()};
+            n.branch[0] = Branch{Ray{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()}, m.color,
+                                 m.color.maxCoeff()};
             n.branches = 1;
             n.reflectance = m.color.maxCoeff();
             return n;
         case MaterialKind::Dielectric: break;
     }
     ++stats.tree_nodes;
-    const double eta = h.entering ? m.ior : 1.0 / m.ior;
+    // POV-Ray stores an interior's ior in single precision (frame.h, class Interior):
+    // n = 1.333 refracts as 1.33299994..., which moves far-away hits by ~0.1 unit.
+    const double ior = pov ? static_cast<double>(static_cast<float>(m.ior)) : m.ior;
+    const double eta = h.entering ? ior : 1.0 / ior;
     const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
     const auto refr = optics::refract(ray.dir, h.normal, eta);
+    if (pov) {
+        n = dielectric_node_pov(h, ray, cos_i, eta, refr);
+        return n;
+    }
     // Constant reflectivity (Whitted, Fig. 9) keeps its ks even where the direction
     // computation finds total internal reflection; then all light goes the mirror way.
     const double R = refr ? reflectance(m, cos_i, eta) : 1.0;
     n.reflectance = R;
-    const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal)};
+    // Rays are unit length by convention: renormalise, or the rounding error of |dir|
+    // grows about tenfold per bounce in a chain of internal reflections (the sphere
+    // intersection assumes |dir| = 1, so the hit leaves the surface and the next normal
+    // is off), and after ~10 bounces the path is wrong.
+    const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()};
     n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
     n.branches = 1;
     if (refr && R < 1.0) {
         const Vec3 factor = (1.0 - R) * m.filter;
-        // POV-Ray's adc weight for refraction is the filter alone, without (1 − R).
-        const double bail = pov ? m.filter.cwiseAbs().maxCoeff() : factor.maxCoeff();
-        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, factor, bail};
+        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, factor, factor.maxCoeff()};
+        n.branches = 2;
+    }
+    return n;
+}
+
+Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
+                                      const std::optional<Vec3>& refr) const {
+    // POV-Ray 3.7 with `reflection { MIN, MAX fresnel on } conserve_energy` or
+    // `reflection { ks } conserve_energy` and `pigment { rgbf <filter, 1> }`
+    // (trace.cpp ComputeLightedTexture, ComputeReflectivity, ComputeRefraction):
+    // - reflectivity R: the model's value; on total internal reflection Fresnel gives
+    //   MAX = 1, a constant ks stays ks;
+    // - the surface's filter colour is filter·(1 − R), and a refracted ray is spawned only
+    //   when its greyscale exceeds adc_bailout (a local test, not the cumulative weight);
+    //   its adc weight is parent × max3(filter·(1 − R));
+    // - if that refracted ray meets total internal reflection it becomes a mirror ray of
+    //   colour factor 1 (unfiltered) with the refraction's adc weight, and replaces the
+    //   reflection term;
+    // - the reflected ray has colour factor R and adc weight parent × R; none when R = 0.
+    const Material& m = *h.material;
+    const RenderSettings& s = scene_.settings;
+    const double adc = s.integrator == IntegratorKind::Whitted ? 0.0 : s.threshold;
+    double R = reflectance(m, cos_i, eta);
+    if (!refr && m.reflectance != ReflectanceModel::Constant) R = 1.0;
+    const Vec3 filter = (1.0 - R) * m.filter;
+    const double trans = std::fmin(1.0, std::abs(filter.dot(kPovGreyscale)));
+    const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()};
+    Node n;
+    n.reflectance = R;
+    if (trans > adc && !refr) {  // the refracted ray turns into total internal reflection
+        n.branch[0] = Branch{reflected, Vec3(1, 1, 1), filter.cwiseAbs().maxCoeff()};
+        n.branches = 1;
+        n.reflectance = 1.0;
+        return n;
+    }
+    n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
+    n.branches = 1;
+    if (trans > adc) {
+        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, filter, filter.cwiseAbs().maxCoeff()};
         n.branches = 2;
     }
     return n;

@@ -59,8 +59,20 @@ public:
 
     static constexpr double kEpsilon = 1e-6;  // secondary rays ignore hits closer than this
 
+    // POV-Ray 3.7 constants used by the compat mode (source/backend: configbackend.h,
+    // render/trace.cpp): hits are kept for MIN_ISECT_DEPTH <= t < MAX_DISTANCE; shadow
+    // rays ignore hits within SMALL_TOLERANCE / SHADOW_TOLERANCE of either end; the
+    // greyscale of a colour weighs r, g, b by RED/GREEN/BLUE_INTENSITY.
+    static constexpr double kPovMinDepth = 1e-4;
+    static constexpr double kPovMaxDistance = 1e7;
+    static constexpr double kPovShadowTolerance = 1e-3;
+    static inline const Vec3 kPovGreyscale{0.297, 0.589, 0.114};
+
 private:
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
+    Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to) const;
+    Node dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
+                             const std::optional<Vec3>& refr) const;
     const Scene& scene_;
 };
 

@@ -21,7 +21,7 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
     Hit h;
     h.t = t;
     h.point = r.at(t);
-    h.normal = (h.point - s.center) / s.radius;  // negative radius: flipped (RTIOW)
+    h.normal = ((h.point - s.center) / s.radius).normalized();  // negative radius: flipped (RTIOW)
     return h;
 }
 

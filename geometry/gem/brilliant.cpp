@@ -1,0 +1,341 @@
+// The exact round-brilliant construction: the one translation unit that includes CGAL.
+// Planes go through exactly constructed points (CGAL's Exact_predicates_exact_constructions
+// kernel), so the points where four to eight facets meet are single points, not clusters
+// joined by 1e-17 edges; CGAL::halfspace_intersection_3 gives the polyhedron, one polygon per
+// plane; we drop repeated and collinear vertices, measure the proportions on the exact result,
+// and convert to double only at the end. The construction is described in docs/gems.md.
+#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "geometry/error.h"
+#include "geometry/gem/brilliant.h"
+
+namespace refract {
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = K::FT;
+using P3 = K::Point_3;
+using V3 = K::Vector_3;
+using Pl = K::Plane_3;
+using Loop = std::vector<P3>;
+
+constexpr double kPi = 3.14159265358979323846;
+
+[[noreturn]] void degenerate(const std::string& why) {
+    throw InputError("brilliant cut: these parameters give a degenerate brilliant (" + why + ")");
+}
+
+// The nearest double of an exact number (forces the exact value, so the lazy interval is tight).
+double dbl(const FT& x) { return CGAL::to_double(CGAL::exact(x)); }
+
+// cos and sin of an angle in degrees, reduced to the first quadrant so that the four
+// quadrants are exact mirror images and multiples of 90° are exact.
+struct Dir {
+    double c, s;
+};
+Dir unit(double deg) {
+    deg = std::fmod(deg, 360.0);
+    if (deg < 0) deg += 360.0;
+    const int q = static_cast<int>(deg / 90.0);
+    const double r = (deg - 90.0 * q) * kPi / 180.0;
+    const double c = std::cos(r), s = std::sin(r);
+    switch (q & 3) {
+        case 0: return {c, s};
+        case 1: return {-s, c};
+        case 2: return {-c, -s};
+        default: return {s, -c};
+    }
+}
+
+P3 meet(const Pl& a, const Pl& b, const Pl& c) {
+    const auto r = CGAL::intersection(a, b, c);
+    if (r)
+        if (const P3* p = boost::get<P3>(&*r)) return *p;
+    degenerate("three facet planes do not meet in one point");
+}
+
+// The plane through a, b, c oriented so that the origin is strictly on its negative side.
+Pl outward(const P3& a, const P3& b, const P3& c) {
+    if (CGAL::collinear(a, b, c)) degenerate("a facet is defined by three collinear points");
+    const Pl p(a, b, c);
+    switch (p.oriented_side(P3(CGAL::ORIGIN))) {
+        case CGAL::ON_NEGATIVE_SIDE: return p;
+        case CGAL::ON_POSITIVE_SIDE: return p.opposite();
+        default: degenerate("a facet plane passes through the centre");
+    }
+}
+
+// Vertical plane {p : (cos ψ, sin ψ, 0)·p = ρ}: cuts a ridge at azimuth ψ at distance ρ.
+Pl at_distance(const Dir& d, double rho) { return Pl(P3(rho * d.c, rho * d.s, 0), V3(d.c, d.s, 0)); }
+
+struct Construction {
+    std::vector<Pl> planes;
+    std::vector<std::string> labels;
+    void add(const Pl& p, std::string label) {
+        planes.push_back(p);
+        labels.push_back(std::move(label));
+    }
+};
+
+std::string idx(const char* kind, int k, const char* suffix = "") {
+    return std::string(kind) + " " + std::to_string(k) + suffix;
+}
+
+Construction construct(const BrilliantCut& cut) {
+    const double g = cut.girdle / 100;  // half the girdle thickness, in units of R (D = 2)
+    const double t = cut.table / 100, s = cut.star / 100, l = cut.lower_half / 100,
+                 c = cut.culet / 100;
+    const double tb = std::tan(cut.crown_angle * kPi / 180), ta = std::tan(cut.pavilion_angle * kPi / 180);
+    const double zT = g + (1 - t) * tb;  // table plane
+    const double c225 = std::cos(22.5 * kPi / 180);
+    const double rho_e = t * c225, rho_s = rho_e + s * (1 - rho_e), rho_l = 1 - l;
+
+    Dir phi[8], psi[8];
+    P3 G[8], M[8], V[8], W[8], T[8], S[8], L[8];
+    Pl bezel[8], pmain[8];
+    const P3 crown_apex(0, 0, g + tb), culet_apex(0, 0, -g - ta);
+    const Pl table(FT(0), FT(0), FT(1), FT(-zT));
+    for (int k = 0; k < 8; ++k) {
+        phi[k] = unit(45.0 * k);
+        psi[k] = unit(45.0 * k + 22.5);
+        G[k] = P3(phi[k].c, phi[k].s, g);
+        M[k] = P3(phi[k].c, phi[k].s, -g);
+        V[k] = P3(psi[k].c, psi[k].s, g);
+        W[k] = P3(psi[k].c, psi[k].s, -g);
+        const V3 tangent(-phi[k].s, phi[k].c, 0);
+        // Bezel k: through G_k, slope β along φk (through the virtual crown apex).
+        bezel[k] = outward(G[k], crown_apex, G[k] + tangent);
+        // Pavilion main k: through M_k and the pointed culet apex, slope α along φk.
+        pmain[k] = outward(M[k], culet_apex, M[k] + tangent);
+        T[k] = meet(table, bezel[k], Pl(P3(CGAL::ORIGIN), tangent));
+    }
+    for (int k = 0; k < 8; ++k) {
+        const int n = (k + 1) % 8;
+        S[k] = meet(bezel[k], bezel[n], at_distance(psi[k], rho_s));
+        L[k] = meet(pmain[k], pmain[n], at_distance(psi[k], rho_l));
+    }
+
+    Construction out;
+    out.add(table, "table");
+    for (int k = 0; k < 8; ++k) out.add(outward(T[k], T[(k + 1) % 8], S[k]), idx("star", k));
+    for (int k = 0; k < 8; ++k) out.add(bezel[k], idx("bezel", k));
+    // Upper halves flank bezel k: "k-" towards ψ(k−1), "k+" towards ψk.
+    for (int k = 0; k < 8; ++k) {
+        const int p = (k + 7) % 8;
+        out.add(outward(S[p], V[p], G[k]), idx("upper half", k, "-"));
+        out.add(outward(S[k], G[k], V[k]), idx("upper half", k, "+"));
+    }
+    const int n_girdle = girdle_plane_count(cut);
+    for (int j = 0; j < n_girdle; ++j) {
+        const Dir d = unit(360.0 * j / n_girdle);  // tangent to the unit circle at this azimuth
+        out.add(Pl(P3(d.c, d.s, 0), V3(d.c, d.s, 0)), idx("girdle", j));
+    }
+    for (int k = 0; k < 8; ++k) {
+        const int p = (k + 7) % 8;
+        out.add(outward(L[p], W[p], M[k]), idx("lower half", k, "-"));
+        out.add(outward(L[k], M[k], W[k]), idx("lower half", k, "+"));
+    }
+    for (int k = 0; k < 8; ++k) out.add(pmain[k], idx("pavilion main", k));
+    if (c > 0) out.add(Pl(FT(0), FT(0), FT(-1), FT(-g - (1 - c) * ta)), "culet");
+    return out;
+}
+
+// Removes repeated vertices (where four or more planes meet, the dual hull is triangulated
+// and the primal face repeats the vertex) and vertices in the middle of a straight edge.
+void clean(Loop& loop) {
+    Loop out;
+    for (const P3& p : loop)
+        if (out.empty() || out.back() != p) out.push_back(p);
+    while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+    bool changed = true;
+    while (changed && out.size() >= 3) {
+        changed = false;
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            const std::size_t n = out.size();
+            if (CGAL::collinear(out[(i + n - 1) % n], out[i], out[(i + 1) % n])) {
+                out.erase(out.begin() + static_cast<long>(i));
+                changed = true;
+                break;
+            }
+        }
+    }
+    loop.swap(out);
+}
+
+// Expected polygon sizes; a mismatch means the parameters slipped past validation into a
+// different combinatorial cut, which we refuse rather than hand on.
+int expected_vertices(const std::string& kind, const std::string& label, const BrilliantCut& cut) {
+    const int n = girdle_plane_count(cut);
+    const int halves = cut.girdle > 0 ? 3 + n / 16 : 3;
+    if (kind == "table" || kind == "culet") return 8;
+    if (kind == "star") return 3;
+    if (kind == "bezel") return 4;
+    if (kind == "upper half" || kind == "lower half") return halves;
+    if (kind == "pavilion main") return cut.culet > 0 ? 5 : 4;
+    // girdle j: six vertices where it touches a bezel/main or a half junction, else four
+    const int j = std::stoi(label.substr(label.find_last_of(' ') + 1));
+    return (j % (n / 16) == 0) ? 6 : 4;
+}
+
+double rho(const P3& p) { return std::sqrt(dbl(p.x() * p.x() + p.y() * p.y())); }
+
+const P3& lowest(const Loop& l) {
+    return *std::min_element(l.begin(), l.end(), [](const P3& a, const P3& b) { return a.z() < b.z(); });
+}
+const P3& highest(const Loop& l) {
+    return *std::max_element(l.begin(), l.end(), [](const P3& a, const P3& b) { return a.z() < b.z(); });
+}
+Loop common(const Loop& a, const Loop& b) {
+    Loop out;
+    for (const P3& p : a)
+        if (std::find(b.begin(), b.end(), p) != b.end()) out.push_back(p);
+    return out;
+}
+double degrees(double r) { return r * 180 / kPi; }
+
+BrilliantProportions measure(const std::map<std::string, Loop>& faces, const std::map<std::string, Pl>& planes) {
+    const auto face = [&](const std::string& l) -> const Loop& { return faces.at(l); };
+    BrilliantProportions m;
+    const P3 G0 = lowest(face("bezel 0"));           // girdle top at the bezel position
+    const P3 M0 = highest(face("pavilion main 0"));  // girdle bottom at the main position
+    const double D = 2 * rho(G0);
+    const Loop& table = face("table");
+    const FT zT = table[0].z();
+    FT zmin = zT;
+    for (const auto& f : faces)
+        for (const P3& p : f.second) zmin = CGAL::min(zmin, p.z());
+
+    FT widest = 0;  // table corner to corner
+    for (const P3& a : table)
+        for (const P3& b : table) widest = CGAL::max(widest, CGAL::squared_distance(a, b));
+    m.table = 100 * std::sqrt(dbl(widest)) / D;
+    m.crown_height = 100 * dbl(zT - G0.z()) / D;
+    m.girdle = 100 * dbl(G0.z() - M0.z()) / D;
+    m.pavilion_depth = 100 * dbl(M0.z() - zmin) / D;
+    m.total_depth = 100 * dbl(zT - zmin) / D;
+
+    const Pl& bz = planes.at("bezel 0");
+    const Pl& pm = planes.at("pavilion main 0");
+    m.crown_angle = degrees(std::atan2(std::sqrt(dbl(bz.a() * bz.a() + bz.b() * bz.b())), dbl(bz.c())));
+    m.pavilion_angle = degrees(std::atan2(std::sqrt(dbl(pm.a() * pm.a() + pm.b() * pm.b())), -dbl(pm.c())));
+
+    // Star: tip S0, table-edge midpoint, girdle at the half junction V0 (all along ψ0).
+    const Loop& star = face("star 0");
+    const P3 S0 = lowest(star);
+    Loop edge;
+    for (const P3& p : star)
+        if (p != S0) edge.push_back(p);
+    const double rho_e = rho(CGAL::midpoint(edge[0], edge[1]));
+    const P3 V0 = lowest(common(face("upper half 0+"), face("upper half 1-")));
+    m.star = 100 * (rho(S0) - rho_e) / (rho(V0) - rho_e);
+
+    // Lower half: point L0 on the main ridge, girdle at the half junction W0.
+    const P3 L0 = highest(common(face("pavilion main 0"), face("pavilion main 1")));
+    const P3 W0 = highest(common(face("lower half 0+"), face("lower half 1-")));
+    m.lower_half = 100 * (rho(W0) - rho(L0)) / rho(W0);
+
+    const auto culet = faces.find("culet");
+    if (culet != faces.end()) {  // across the flats: twice the nearest edge midpoint
+        const Loop& cl = culet->second;
+        double r = rho(CGAL::midpoint(cl.back(), cl.front()));
+        for (std::size_t i = 0; i + 1 < cl.size(); ++i) r = std::min(r, rho(CGAL::midpoint(cl[i], cl[i + 1])));
+        m.culet = 100 * 2 * r / D;
+    }
+    return m;
+}
+
+struct LessXYZ {
+    bool operator()(const P3& a, const P3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
+};
+
+}  // namespace
+
+Gem build_brilliant(const BrilliantCut& cut) {
+    validate(cut);
+    const Construction con = construct(cut);
+
+    CGAL::Surface_mesh<P3> hull;
+    try {
+        CGAL::halfspace_intersection_3(con.planes.begin(), con.planes.end(), hull,
+                                       boost::optional<P3>(P3(CGAL::ORIGIN)));
+    } catch (const CGAL::Failure_exception& e) {
+        degenerate(std::string("CGAL: ") + e.what());
+    }
+
+    // One polygon per plane: identify each face's plane by exact incidence.
+    std::vector<Loop> loops(con.planes.size());
+    for (auto f : hull.faces()) {
+        Loop loop;
+        for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) loop.push_back(hull.point(v));
+        clean(loop);
+        if (loop.size() < 3) continue;  // a plane touching the gem in a point or an edge
+        std::size_t i = 0;
+        while (i < con.planes.size() &&
+               !(con.planes[i].has_on(loop[0]) && con.planes[i].has_on(loop[1]) && con.planes[i].has_on(loop[2])))
+            ++i;
+        if (i == con.planes.size() || !loops[i].empty()) degenerate("a face matches no single facet plane");
+        const V3 n = CGAL::cross_product(loop[1] - loop[0], loop[2] - loop[1]);
+        if (n * con.planes[i].orthogonal_vector() < 0) std::reverse(loop.begin(), loop.end());
+        loops[i] = std::move(loop);
+    }
+
+    std::map<std::string, Loop> faces;
+    std::map<std::string, Pl> planes;
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+        const std::string& label = con.labels[i];
+        const std::string kind = facet_kind(label);
+        if (loops[i].empty()) {
+            if (kind == "girdle" && cut.girdle == 0) continue;  // knife edge: no girdle facets
+            degenerate("facet '" + label + "' vanishes");
+        }
+        const int want = expected_vertices(kind, label, cut);
+        if (static_cast<int>(loops[i].size()) != want)
+            degenerate("facet '" + label + "' has " + std::to_string(loops[i].size()) + " vertices, expected " +
+                       std::to_string(want));
+        faces[label] = loops[i];
+        planes.emplace(label, con.planes[i]);
+    }
+
+    Gem gem;
+    gem.cut = cut;
+    gem.measured = measure(faces, planes);
+
+    // To doubles: shared vertices (exactly equal points become one vertex), unit planes.
+    std::map<P3, int, LessXYZ> ids;
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+        if (loops[i].empty()) continue;
+        GemFacet f;
+        f.label = con.labels[i];
+        const Pl& p = con.planes[i];
+        const double a = dbl(p.a()), b = dbl(p.b()), c = dbl(p.c()), d = dbl(p.d());
+        const double norm = std::sqrt(a * a + b * b + c * c);
+        f.plane.normal = Vec3(a, b, c) / norm;
+        f.plane.offset = -d / norm;
+        for (const P3& q : loops[i]) {
+            auto it = ids.find(q);
+            if (it == ids.end()) {
+                it = ids.emplace(q, static_cast<int>(gem.mesh.vertices.size())).first;
+                gem.mesh.vertices.emplace_back(dbl(q.x()), dbl(q.y()), dbl(q.z()));
+            }
+            f.vertex_ids.push_back(it->second);
+            f.polygon.push_back(gem.mesh.vertices[static_cast<std::size_t>(it->second)]);
+        }
+        const int facet = static_cast<int>(gem.facets.size());
+        for (std::size_t v = 1; v + 1 < f.vertex_ids.size(); ++v) {
+            gem.mesh.triangles.emplace_back(f.vertex_ids[0], f.vertex_ids[v], f.vertex_ids[v + 1]);
+            gem.triangle_facet.push_back(facet);
+        }
+        gem.solid.planes.push_back(f.plane);
+        gem.solid.labels.push_back(f.label);
+        gem.facets.push_back(std::move(f));
+    }
+    return gem;
+}
+
+}  // namespace refract

@@ -1,0 +1,131 @@
+// Gem export: OBJ, OFF, PLY (ASCII) and POV-Ray, written atomically.
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "geometry/error.h"
+#include "geometry/gem/gem_io.h"
+
+namespace refract {
+namespace {
+
+std::string g17(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v == 0 ? 0.0 : v);  // no "-0"
+    return buf;
+}
+std::string xyz(const Vec3& p, const char* sep = " ") { return g17(p.x()) + sep + g17(p.y()) + sep + g17(p.z()); }
+
+std::string header_comment(const Gem& gem) {
+    const BrilliantCut& c = gem.cut;
+    std::ostringstream s;
+    s << "round brilliant by refract: table " << c.table << " %, crown " << c.crown_angle << " deg, pavilion "
+      << c.pavilion_angle << " deg, star " << c.star << " %, lower half " << c.lower_half << " %, girdle "
+      << c.girdle << " % (" << girdle_description(c) << "), culet " << c.culet << " %; girdle radius 1, z up; "
+      << gem.facets.size() << " facets";
+    return s.str();
+}
+
+std::string obj(const Gem& gem) {
+    std::ostringstream s;
+    s << "# " << header_comment(gem) << "\n";
+    for (const Vec3& v : gem.mesh.vertices) s << "v " << xyz(v) << "\n";
+    for (const GemFacet& f : gem.facets) {
+        std::string name = f.label;
+        std::replace(name.begin(), name.end(), ' ', '_');
+        s << "g " << name << "\nf";
+        for (int i : f.vertex_ids) s << " " << i + 1;
+        s << "\n";
+    }
+    return s.str();
+}
+
+std::string off(const Gem& gem) {
+    std::ostringstream s;
+    s << "OFF\n# " << header_comment(gem) << "\n";
+    std::size_t edges = 0;
+    for (const GemFacet& f : gem.facets) edges += f.vertex_ids.size();
+    s << gem.mesh.vertices.size() << " " << gem.facets.size() << " " << edges / 2 << "\n";
+    for (const Vec3& v : gem.mesh.vertices) s << xyz(v) << "\n";
+    for (const GemFacet& f : gem.facets) {
+        s << f.vertex_ids.size();
+        for (int i : f.vertex_ids) s << " " << i;
+        s << "\n";
+    }
+    return s.str();
+}
+
+std::string ply(const Gem& gem) {
+    std::ostringstream s;
+    s << "ply\nformat ascii 1.0\ncomment " << header_comment(gem) << "\nelement vertex " << gem.mesh.vertices.size()
+      << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << gem.facets.size()
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const Vec3& v : gem.mesh.vertices) s << xyz(v) << "\n";
+    for (const GemFacet& f : gem.facets) {
+        s << f.vertex_ids.size();
+        for (int i : f.vertex_ids) s << " " << i;
+        s << "\n";
+    }
+    return s.str();
+}
+
+std::string lower(std::string s) {
+    for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+}
+
+void write_atomically(const std::string& path, const std::string& text) {
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const fs::path tmp = target.parent_path() / (".tmp-" + target.filename().string() + "-" + std::to_string(::getpid()));
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.close();
+        if (!out) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw InputError("output file '" + path + "': cannot be written");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        std::error_code ec2;
+        fs::remove(tmp, ec2);
+        throw InputError("output file '" + path + "': cannot be written (" + ec.message() + ")");
+    }
+}
+
+}  // namespace
+
+std::vector<std::string> gem_file_extensions() { return {".obj", ".off", ".ply", ".pov"}; }
+
+std::string pov_gem_declaration(const Gem& gem, const std::string& name) {
+    std::ostringstream s;
+    s << "// " << header_comment(gem) << "\n#declare " << name << " = intersection {\n";
+    for (const GemFacet& f : gem.facets)
+        s << "  plane { <" << xyz(f.plane.normal, ", ") << ">, " << g17(f.plane.offset) << " }  // " << f.label
+          << "\n";
+    s << "}\n";
+    return s.str();
+}
+
+void write_gem(const Gem& gem, const std::string& path) {
+    const std::string ext = lower(std::filesystem::path(path).extension().string());
+    std::string text;
+    if (ext == ".obj") text = obj(gem);
+    else if (ext == ".off") text = off(gem);
+    else if (ext == ".ply") text = ply(gem);
+    else if (ext == ".pov") text = pov_gem_declaration(gem);
+    else
+        throw InputError("output file '" + path + "': unknown extension '" + ext +
+                         "' (allowed: .obj, .off, .ply, .pov)");
+    write_atomically(path, text);
+}
+
+}  // namespace refract

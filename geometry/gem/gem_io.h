@@ -1,0 +1,26 @@
+#pragma once
+// Writing a built gem to disk, chosen by the file extension:
+//   .obj  Wavefront OBJ, one polygon per facet, grouped by facet label ("g upper_half_2+")
+//   .off  Object File Format, one polygon per facet
+//   .ply  ASCII PLY, one polygon per facet
+//   .pov  POV-Ray: #declare Gem = intersection { plane { <n>, d } ... }
+// Coordinates are the gem's own (girdle radius 1, z up); %.17g keeps every double.
+// Files are written to a temporary name beside the target and renamed: never half-written.
+#include <string>
+#include <vector>
+
+#include "geometry/gem/brilliant.h"
+
+namespace refract {
+
+std::vector<std::string> gem_file_extensions();  // {".obj", ".off", ".ply", ".pov"}
+
+// Throws InputError for an unknown extension or a file that cannot be written.
+void write_gem(const Gem& gem, const std::string& path);
+
+// The POV-Ray declaration alone. POV-Ray's `plane { <n>, d }` is the set n·x = d with the
+// inside where n·x < d, the same convention as refract's planes; POV-Ray's axes are
+// left-handed but the numbers are the same.
+std::string pov_gem_declaration(const Gem& gem, const std::string& name = "Gem");
+
+}  // namespace refract

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# refract's one set-up script (Debian 12, as root or with sudo):
+#   bash run.sh reproduce   install what is missing, build, reproduce every figure and
+#                           the validation report into out/ (open out/index.html)
+#   bash run.sh test        install what is missing, build, run the test suite (ctest)
+#   bash run.sh build       install and build only
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(build-essential cmake ninja-build pkg-config libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
+          libopenimageio-dev openimageio-tools libtbb-dev nlohmann-json3-dev libcli11-dev catch2
+          gnuplot-nox povray)
+
+install_missing() {
+    local missing=()
+    for p in "${PACKAGES[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+    done
+    if [ ${#missing[@]} -gt 0 ]; then
+        echo "run.sh: installing ${missing[*]}"
+        local sudo=""
+        [ "$(id -u)" -eq 0 ] || sudo="sudo"
+        $sudo apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    fi
+}
+
+build() {
+    cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build build -j "$(nproc)"
+}
+
+case "${1:-}" in
+    reproduce)
+        install_missing
+        build
+        shift
+        ./build/cli/refract reproduce -o out "$@"
+        ;;
+    test)
+        install_missing
+        build
+        ctest --test-dir build --output-on-failure -j "$(nproc)"
+        ;;
+    build)
+        install_missing
+        build
+        ;;
+    *)
+        echo "usage: bash run.sh reproduce|test|build" >&2
+        exit 2
+        ;;
+esac
