@@ -1,0 +1,436 @@
+#include "validation/pov_export.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include <Eigen/Dense>
+
+#include "geometry/error.h"
+#include "validation/files.h"
+
+namespace refract::validation {
+
+std::string pov_number(double v) {
+    if (!std::isfinite(v)) throw InputError("POV-Ray export: non-finite number " + std::to_string(v));
+    if (v == 0) return "0";  // also -0
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest round-trip form
+    return std::string(buf, r.ptr);
+}
+
+namespace {
+
+// ---- formatting -----------------------------------------------------------------
+
+std::string vec(const Vec3& v) {
+    return "<" + pov_number(v.x()) + ", " + pov_number(v.y()) + ", " + pov_number(v.z()) + ">";
+}
+
+// Object and material names go into comments only; keep them on one printable line.
+std::string comment_text(const std::string& s) {
+    std::string out;
+    for (unsigned char c : s) out += (c >= 32 && c < 127) ? static_cast<char>(c) : '?';
+    return out;
+}
+
+// ---- refusals ---------------------------------------------------------------------
+
+class Refuser {
+public:
+    explicit Refuser(const Scene& s) : file_(s.source.empty() ? std::string("scene") : s.source) {}
+    [[noreturn]] void operator()(const std::string& where, const std::string& what) const {
+        throw InputError(file_ + ": " + where + ": " + what + "; POV-Ray 3.7 cannot express this exactly, export refused");
+    }
+
+private:
+    std::string file_;
+};
+
+std::string material_where(const Material& m) { return "material '" + comment_text(m.name) + "'"; }
+std::string object_where(const Object& o) { return "object '" + comment_text(o.name) + "'"; }
+
+void check_settings(const Scene& s, const Refuser& refuse) {
+    const RenderSettings& r = s.settings;
+    if (r.integrator == IntegratorKind::Stochastic)
+        refuse("/render/integrator", "the stochastic integrator (RTIOW path sampling) has no POV-Ray equivalent");
+    if (r.samples > 1 && r.jitter)
+        refuse("/render/jitter", "jittered supersampling (" + std::to_string(r.samples) +
+                                     " samples) differs from POV-Ray's antialiasing");
+    if (r.max_depth + 1 > 256)
+        refuse("/render/max_depth", "max_depth " + std::to_string(r.max_depth) +
+                                        " needs max_trace_level " + std::to_string(r.max_depth + 1) + " > 256");
+}
+
+void check_material(const Material& m, const Refuser& refuse) {
+    switch (m.kind) {
+        case MaterialKind::Diffuse:
+        case MaterialKind::Mirror:
+        case MaterialKind::Emissive: return;
+        case MaterialKind::Lambertian:
+            refuse(material_where(m), "a lambertian material scatters randomly (path tracing)");
+        case MaterialKind::Metal:
+            if (m.fuzz != 0)
+                refuse(material_where(m), "metal with fuzz " + pov_number(m.fuzz) + " scatters randomly (path tracing)");
+            return;
+        case MaterialKind::Dielectric:
+            if (!m.dispersion.empty())
+                refuse(material_where(m), "dispersion '" + comment_text(m.dispersion) +
+                                              "' (POV-Ray's dispersion model is not refract's)");
+            if (m.reflectance == ReflectanceModel::Schlick)
+                refuse(material_where(m), "reflectance 'schlick' (POV-Ray has exact unpolarised Fresnel only)");
+            if (m.reflectance == ReflectanceModel::FresnelS || m.reflectance == ReflectanceModel::FresnelP)
+                refuse(material_where(m), "a polarised reflectance (POV-Ray has unpolarised Fresnel only)");
+            if (std::abs(m.ior - 1.0) < 1e-9)
+                refuse(material_where(m), "ior 1 (POV-Ray passes such an interface without counting a trace level)");
+            for (int c = 0; c < 3; ++c)
+                if (m.filter[c] < 0) refuse(material_where(m), "a negative filter component");
+            return;
+    }
+}
+
+// ---- geometry checks for transparent objects -----------------------------------------
+
+// POV-Ray decides whether a refracted ray enters or leaves by the list of objects the ray
+// is inside; refract by the side of the surface normal it hits. They agree when the
+// transparent solids are disjoint, the camera is outside all of them, and the only
+// nesting is RTIOW's hollow sphere (a negative-radius sphere inside a sphere of the same
+// material), which is exported as one union sharing one interior.
+
+struct Box {
+    Vec3 lo, hi;
+};
+
+bool overlap(const Box& a, const Box& b) {
+    for (int k = 0; k < 3; ++k)
+        if (a.hi[k] <= b.lo[k] || b.hi[k] <= a.lo[k]) return false;
+    return true;
+}
+
+// Vertices of a convex polyhedron n_i·x <= d_i (every triple of planes), or empty
+// optional when it is unbounded.
+std::optional<std::vector<Vec3>> polyhedron_vertices(const ConvexPolyhedron& c) {
+    const size_t n = c.planes.size();
+    // Unbounded iff the recession cone {v : n_i·v <= 0} holds a non-zero v; such a cone
+    // has an extreme ray along n_i × n_j, or all normals lie in one plane.
+    Eigen::MatrixXd N(static_cast<Eigen::Index>(n), 3);
+    for (size_t i = 0; i < n; ++i) N.row(static_cast<Eigen::Index>(i)) = c.planes[i].normal.transpose();
+    if (Eigen::FullPivLU<Eigen::MatrixXd>(N).rank() < 3) return std::nullopt;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j) {
+            const Vec3 v = c.planes[i].normal.cross(c.planes[j].normal);
+            if (v.norm() < 1e-12) continue;
+            for (const Vec3& d : {Vec3(v.normalized()), Vec3(-v.normalized())}) {
+                bool in_cone = true;
+                for (const Plane& p : c.planes) in_cone = in_cone && p.normal.dot(d) <= 1e-12;
+                if (in_cone) return std::nullopt;
+            }
+        }
+    std::vector<Vec3> verts;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            for (size_t k = j + 1; k < n; ++k) {
+                Eigen::Matrix3d A;
+                A.row(0) = c.planes[i].normal.transpose();
+                A.row(1) = c.planes[j].normal.transpose();
+                A.row(2) = c.planes[k].normal.transpose();
+                if (std::abs(A.determinant()) < 1e-12) continue;
+                const Vec3 x = A.fullPivLu().solve(Vec3(c.planes[i].offset, c.planes[j].offset, c.planes[k].offset));
+                bool inside = true;
+                for (const Plane& p : c.planes)
+                    inside = inside && p.normal.dot(x) <= p.offset + 1e-9 * (1.0 + std::abs(p.offset));
+                if (inside) verts.push_back(x);
+            }
+    return verts;
+}
+
+std::optional<Box> object_box(const Shape& shape) {
+    if (const auto* s = std::get_if<Sphere>(&shape)) {
+        const double r = std::abs(s->radius);
+        return Box{s->center - Vec3::Constant(r), s->center + Vec3::Constant(r)};
+    }
+    if (const auto* m = std::get_if<TriangleMesh>(&shape)) {
+        const auto b = bounds(*m);
+        if (!b) return std::nullopt;
+        return Box{b->lo, b->hi};
+    }
+    if (const auto* c = std::get_if<ConvexPolyhedron>(&shape)) {
+        const auto v = polyhedron_vertices(*c);
+        if (!v || v->empty()) return std::nullopt;
+        Box b{(*v)[0], (*v)[0]};
+        for (const Vec3& p : *v) {
+            b.lo = b.lo.cwiseMin(p);
+            b.hi = b.hi.cwiseMax(p);
+        }
+        return b;
+    }
+    return std::nullopt;  // plane: a half-space
+}
+
+bool mesh_is_closed(const TriangleMesh& m) {
+    std::map<std::pair<int, int>, int> edges;
+    for (const auto& t : m.triangles)
+        for (int e = 0; e < 3; ++e) {
+            const int a = t[e], b = t[(e + 1) % 3];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    for (const auto& [edge, count] : edges)
+        if (count != 2) return false;
+    return true;
+}
+
+// Is point p inside (or on) the solid? Meshes by the parity of crossings along a ray.
+bool point_inside(const Shape& shape, const Vec3& p) {
+    if (const auto* s = std::get_if<Sphere>(&shape)) return (p - s->center).norm() <= s->radius * (1 + 1e-12);
+    if (const auto* pl = std::get_if<Plane>(&shape)) return pl->normal.dot(p) <= pl->offset + 1e-12;
+    if (const auto* c = std::get_if<ConvexPolyhedron>(&shape)) {
+        for (const Plane& q : c->planes)
+            if (q.normal.dot(p) > q.offset + 1e-12) return false;
+        return true;
+    }
+    const auto& m = std::get<TriangleMesh>(shape);
+    const Ray ray{p, Vec3(0.5773, 0.5774, 0.5775).normalized()};
+    int crossings = 0;
+    double t = 0;
+    while (const auto h = intersect(m, ray, t, INFINITY)) {
+        ++crossings;
+        t = h->t;
+    }
+    return crossings % 2 == 1;
+}
+
+// Does the solid reach the camera's ray origins? Perspective: the location. Orthographic:
+// the image rectangle the parallel rays start from (spheres exactly, others by boxes).
+bool camera_inside(const Shape& shape, const Camera& cam) {
+    if (cam.type == Camera::Type::Perspective) return point_inside(shape, cam.location);
+    const Camera::Basis b = cam.basis();
+    const Vec3 corner = cam.location - 0.5 * b.R - 0.5 * b.U;
+    if (const auto* s = std::get_if<Sphere>(&shape)) {
+        if (s->radius < 0) return true;
+        const Vec3 q = s->center - corner;
+        const double u = std::clamp(q.dot(b.R) / b.R.squaredNorm(), 0.0, 1.0);
+        const double v = std::clamp(q.dot(b.U) / b.U.squaredNorm(), 0.0, 1.0);
+        return (corner + u * b.R + v * b.U - s->center).norm() <= s->radius;
+    }
+    const auto box = object_box(shape);
+    if (!box) return true;
+    Box rect{corner, corner};
+    for (const Vec3& p : {Vec3(corner + b.R), Vec3(corner + b.U), Vec3(corner + b.R + b.U)}) {
+        rect.lo = rect.lo.cwiseMin(p);
+        rect.hi = rect.hi.cwiseMax(p);
+    }
+    for (int k = 0; k < 3; ++k) {  // a flat rectangle has zero thickness along one axis
+        rect.lo[k] -= 1e-9;
+        rect.hi[k] += 1e-9;
+    }
+    return overlap(rect, *box);
+}
+
+bool same_optics(const Material& a, const Material& b) {
+    return a.kind == b.kind && a.ior == b.ior && a.filter == b.filter && a.reflectance == b.reflectance &&
+           a.constant_reflectivity == b.constant_reflectivity && a.dispersion == b.dispersion;
+}
+
+// Groups of transparent objects exported as one POV-Ray object each (one interior):
+// a solid alone, or a sphere with the negative-radius spheres hollowing it.
+std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser& refuse) {
+    std::vector<size_t> solids, holes;
+    for (size_t k = 0; k < s.objects.size(); ++k) {
+        const Object& o = s.objects[k];
+        if (s.materials[o.material].kind != MaterialKind::Dielectric) continue;
+        const auto* sp = std::get_if<Sphere>(&o.shape);
+        (sp && sp->radius < 0 ? holes : solids).push_back(k);
+        if (const auto* m = std::get_if<TriangleMesh>(&o.shape))
+            if (!mesh_is_closed(*m)) refuse(object_where(o), "a transparent mesh must be closed (every edge in two triangles)");
+        if (!(sp && sp->radius < 0) && camera_inside(o.shape, s.camera))
+            refuse(object_where(o), "the camera is inside (or its image plane cuts) a transparent object");
+    }
+    // Solids pairwise disjoint.
+    for (size_t a = 0; a < solids.size(); ++a)
+        for (size_t b = a + 1; b < solids.size(); ++b) {
+            const Object& A = s.objects[solids[a]];
+            const Object& B = s.objects[solids[b]];
+            const auto* sa = std::get_if<Sphere>(&A.shape);
+            const auto* sb = std::get_if<Sphere>(&B.shape);
+            bool hit;
+            if (sa && sb) {
+                hit = (sa->center - sb->center).norm() < sa->radius + sb->radius;
+            } else {
+                const auto ba = object_box(A.shape), bb = object_box(B.shape);
+                hit = !ba || !bb || overlap(*ba, *bb);
+            }
+            if (hit)
+                refuse(object_where(A) + " and " + object_where(B),
+                       "transparent objects that overlap (or unbounded ones together)");
+        }
+    std::vector<std::vector<size_t>> groups;
+    for (size_t k : solids) groups.push_back({k});
+    // Each hole strictly inside one sphere of the same material, holes disjoint.
+    for (size_t h : holes) {
+        const Object& H = s.objects[h];
+        const Sphere& hs = std::get<Sphere>(H.shape);
+        bool placed = false;
+        for (auto& g : groups) {
+            const Object& O = s.objects[g[0]];
+            const auto* os = std::get_if<Sphere>(&O.shape);
+            if (!os || !same_optics(s.materials[O.material], s.materials[H.material])) continue;
+            if ((hs.center - os->center).norm() - hs.radius >= os->radius) continue;  // hs.radius < 0
+            for (size_t other = 1; other < g.size(); ++other) {
+                const Sphere& q = std::get<Sphere>(s.objects[g[other]].shape);
+                if ((q.center - hs.center).norm() < -q.radius - hs.radius)
+                    refuse(object_where(H), "hollow spheres inside one sphere must not overlap");
+            }
+            g.push_back(h);
+            placed = true;
+            break;
+        }
+        if (!placed)
+            refuse(object_where(H), "a transparent negative-radius sphere must lie inside a sphere of the same material "
+                                    "(RTIOW's hollow sphere)");
+    }
+    return groups;
+}
+
+// ---- statements -------------------------------------------------------------------
+
+std::string texture(const Material& m) {
+    std::ostringstream t;
+    t << "texture { ";
+    switch (m.kind) {
+        case MaterialKind::Diffuse:
+            if (m.checker)
+                t << "pigment { checker rgb " << vec(m.color) << " rgb " << vec(m.checker->color2) << " scale "
+                  << pov_number(m.checker->size) << " } ";
+            else
+                t << "pigment { rgb " << vec(m.color) << " } ";
+            t << "finish { ambient " << pov_number(m.ambient) << " emission 0 diffuse " << pov_number(m.diffuse) << " }";
+            break;
+        case MaterialKind::Mirror:
+        case MaterialKind::Metal:  // fuzz 0: a tinted mirror
+            t << "pigment { rgb 0 } finish { ambient 0 emission 0 diffuse 0 reflection { rgb " << vec(m.color) << " } }";
+            break;
+        case MaterialKind::Emissive:
+            t << "pigment { rgb " << vec(m.color) << " } finish { ambient 0 emission 1 diffuse 0 }";
+            break;
+        case MaterialKind::Dielectric:
+            // rgbf <filter, 1>: transmitted light × filter, no surface colour of its own.
+            // conserve_energy: the transmitted part is also × (1 − reflectivity).
+            t << "pigment { rgbf <" << pov_number(m.filter.x()) << ", " << pov_number(m.filter.y()) << ", "
+              << pov_number(m.filter.z()) << ", 1> } finish { ambient 0 emission 0 diffuse 0 reflection { ";
+            if (m.reflectance == ReflectanceModel::Constant)
+                t << pov_number(m.constant_reflectivity);  // Whitted: ks constant, kt = 1 − ks
+            else
+                t << "0, 1 fresnel on";  // exact unpolarised Fresnel
+            t << " } conserve_energy }";
+            break;
+        case MaterialKind::Lambertian: break;  // refused earlier
+    }
+    t << " }";
+    return t.str();
+}
+
+std::string interior(const Material& m) { return "interior { ior " + pov_number(m.ior) + " }"; }
+
+std::string shape(const Shape& sh) {
+    std::ostringstream o;
+    if (const auto* s = std::get_if<Sphere>(&sh)) {
+        o << "sphere { " << vec(s->center) << ", " << pov_number(std::abs(s->radius));
+        if (s->radius < 0) o << " inverse";
+    } else if (const auto* p = std::get_if<Plane>(&sh)) {
+        o << "plane { " << vec(p->normal) << ", " << pov_number(p->offset);
+    } else if (const auto* m = std::get_if<TriangleMesh>(&sh)) {
+        o << "mesh2 {\n    vertex_vectors { " << m->vertices.size();
+        for (const Vec3& v : m->vertices) o << ",\n      " << vec(v);
+        o << " }\n    face_indices { " << m->triangles.size();
+        for (const auto& t : m->triangles) o << ",\n      <" << t[0] << ", " << t[1] << ", " << t[2] << ">";
+        o << " }\n   ";
+    } else {
+        const auto& c = std::get<ConvexPolyhedron>(sh);
+        o << "intersection {";
+        for (size_t k = 0; k < c.planes.size(); ++k) {
+            o << "\n    plane { " << vec(c.planes[k].normal) << ", " << pov_number(c.planes[k].offset) << " }";
+            if (k < c.labels.size() && !c.labels[k].empty()) o << "  // " << comment_text(c.labels[k]);
+        }
+        o << "\n   ";
+    }
+    return o.str();  // open: the caller appends texture, interior and the closing brace
+}
+
+std::string camera(const Camera& c) {
+    std::ostringstream o;
+    if (c.type == Camera::Type::Perspective) {
+        o << "camera {\n  perspective\n  location " << vec(c.location) << "\n  sky " << vec(c.sky)
+          << "\n  up y\n  right x*" << c.width << "/" << c.height << "\n  angle " << pov_number(c.angle_deg);
+    } else {
+        const double aspect = static_cast<double>(c.width) / c.height;
+        o << "camera {\n  orthographic\n  location " << vec(c.location) << "\n  sky " << vec(c.sky) << "\n  up y*"
+          << pov_number(c.ortho_height) << "\n  right x*" << pov_number(c.ortho_height * aspect);
+    }
+    o << "\n  look_at " << vec(c.look_at) << "\n}\n";
+    return o.str();
+}
+
+std::string background(const Background& b) {
+    if (b.kind == Background::Kind::Solid) return "background { rgb " + vec(b.color) + " }\n";
+    // RTIOW sky: lerp(bottom, top, (dir.y + 1)/2). The gradient is evaluated on the unit
+    // ray direction; scale 2 and translate −y map dir.y ∈ [−1, 1] onto [0, 1].
+    return "sky_sphere {\n  pigment { gradient y color_map { [0 rgb " + vec(b.bottom) + "] [1 rgb " + vec(b.top) +
+           "] } scale 2 translate -y }\n}\n";
+}
+
+}  // namespace
+
+std::string export_pov(const Scene& s) {
+    const Refuser refuse(s);
+    check_settings(s, refuse);
+    for (const Material& m : s.materials) check_material(m, refuse);
+    const auto groups = dielectric_groups(s, refuse);
+
+    std::ostringstream o;
+    o << "#version 3.7;\n"
+      << "// Exported by refract from " << comment_text(s.source.empty() ? "a scene" : s.source)
+      << "; renders what refract renders with \"compat\": \"povray\".\n";
+    const bool whitted = s.settings.integrator == IntegratorKind::Whitted;
+    o << "global_settings {\n  assumed_gamma 1.0\n  max_trace_level " << s.settings.max_depth + 1
+      << "\n  adc_bailout " << pov_number(whitted ? 0.0 : s.settings.threshold) << "\n}\n";
+    o << camera(s.camera);
+    o << background(s.background);
+    for (const PointLight& l : s.lights) o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
+
+    std::set<size_t> grouped;
+    for (const auto& g : groups) grouped.insert(g.begin(), g.end());
+    for (size_t k = 0; k < s.objects.size(); ++k) {
+        if (grouped.count(k)) continue;
+        const Object& obj = s.objects[k];
+        const Material& m = s.materials[obj.material];
+        Shape sh = obj.shape;
+        if (auto* sp = std::get_if<Sphere>(&sh)) sp->radius = std::abs(sp->radius);  // opaque: the normal side is moot
+        o << "// " << comment_text(obj.name) << " (" << comment_text(m.name) << ")\n";
+        o << shape(sh) << " " << texture(m);
+        if (m.kind == MaterialKind::Emissive) o << " no_shadow";  // a highlight sphere, not an occluder
+        o << " }\n";
+    }
+    for (const auto& g : groups) {
+        const Material& m = s.materials[s.objects[g[0]].material];
+        o << "// " << comment_text(s.objects[g[0]].name) << " (" << comment_text(m.name) << ")";
+        if (g.size() == 1) {
+            o << "\n" << shape(s.objects[g[0]].shape) << " " << texture(m) << " " << interior(m) << " }\n";
+            continue;
+        }
+        o << " hollowed by";
+        for (size_t i = 1; i < g.size(); ++i) o << " " << comment_text(s.objects[g[i]].name);
+        o << "\nunion {\n";  // one interior for all the surfaces of the hollow solid
+        for (size_t i : g) o << "  " << shape(s.objects[i].shape) << " }\n";
+        o << "  " << texture(m) << "\n  " << interior(m) << "\n}\n";
+    }
+    return o.str();
+}
+
+void write_pov(const Scene& scene, const std::string& path) { write_text_file(path, export_pov(scene)); }
+
+}  // namespace refract::validation

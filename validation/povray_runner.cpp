@@ -1,0 +1,202 @@
+#include "validation/povray_runner.h"
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <sstream>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "geometry/error.h"
+#include "validation/files.h"
+
+namespace refract::validation {
+namespace fs = std::filesystem;
+
+std::string find_povray(const std::string& executable) {
+    auto runnable = [](const fs::path& p) {
+        std::error_code ec;
+        return fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0;
+    };
+    if (executable.find('/') != std::string::npos) return runnable(executable) ? executable : std::string();
+    const char* path = std::getenv("PATH");
+    std::istringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+        if (dir.empty()) continue;
+        const fs::path p = fs::path(dir) / executable;
+        if (runnable(p)) return p.string();
+    }
+    return {};
+}
+
+namespace {
+
+// A temporary directory removed with everything in it when the scope ends.
+class TempDir {
+public:
+    TempDir() {
+        std::string tmpl = (fs::temp_directory_path() / "refract-povray-XXXXXX").string();
+        std::vector<char> buf(tmpl.begin(), tmpl.end());
+        buf.push_back('\0');
+        if (!::mkdtemp(buf.data())) throw PovrayError(std::string("cannot create a temporary directory: ") + std::strerror(errno));
+        path_ = buf.data();
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+std::string tail(const std::string& text, size_t lines) {
+    size_t pos = text.size();
+    for (size_t n = 0; n <= lines && pos > 0; ++n) {
+        const size_t p = text.rfind('\n', pos - 1);
+        if (p == std::string::npos) return text;
+        pos = p;
+        if (n == lines) return text.substr(pos + 1);
+    }
+    return text.substr(pos);
+}
+
+// The first POV-Ray message that says what went wrong ("Parse Error: ...").
+std::string first_error_line(const std::string& log) {
+    std::istringstream in(log);
+    std::string line;
+    while (std::getline(in, line))
+        if (line.find("Error") != std::string::npos || line.find("error") != std::string::npos) return line;
+    return {};
+}
+
+// "POV-Ray 3.7.0.10.unofficial" from the banner line "Persistence of Vision(tm) Ray
+// Tracer Version 3.7.0.10.unofficial (g++ @".
+std::string version_line(const std::string& log) {
+    std::istringstream in(log);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("Persistence of Vision", 0) != 0) continue;
+        const auto v = line.find("Version ");
+        if (v == std::string::npos) return line;
+        std::istringstream words(line.substr(v + 8));
+        std::string version;
+        words >> version;
+        return "POV-Ray " + version;
+    }
+    return {};
+}
+
+}  // namespace
+
+PovrayRender render_povray(const std::string& pov_source, int width, int height, const PovrayOptions& opt) {
+    const std::string exe = find_povray(opt.executable);
+    if (exe.empty()) throw PovrayError("povray not found (looked for '" + opt.executable + "' on PATH); install POV-Ray 3.7");
+    if (width <= 0 || height <= 0) throw PovrayError("image size must be positive");
+    TempDir dir;
+    const fs::path scene = dir.path() / "scene.pov";
+    const fs::path image = dir.path() / "out.png";
+    const fs::path log_path = dir.path() / "povray.log";
+    write_text_file(scene.string(), pov_source);
+
+    // Arguments: no antialiasing, no display, no pause, 16-bit linear PNG, terse output,
+    // threads; no user ini (the temporary HOME has none).
+    std::vector<std::string> args = {exe,
+                                     "+I" + scene.filename().string(),
+                                     "+O" + image.filename().string(),
+                                     "+W" + std::to_string(width),
+                                     "+H" + std::to_string(height),
+                                     "-A",
+                                     "-D",
+                                     "-P",
+                                     "+WT" + std::to_string(std::max(1, opt.threads)),
+                                     "+FN16",
+                                     "File_Gamma=1.0",
+                                     "-V"};
+    // A clean environment: POV-Ray reads and writes its per-user files under HOME.
+    const std::string env_home = "HOME=" + dir.path().string();
+    const char* path_env = std::getenv("PATH");
+    const std::string env_path = std::string("PATH=") + (path_env ? path_env : "/usr/bin:/bin");
+    const std::string env_lang = "LC_ALL=C";
+
+    // Everything the child needs is built before fork (no allocation after it).
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    char* envp[] = {const_cast<char*>(env_home.c_str()), const_cast<char*>(env_path.c_str()),
+                    const_cast<char*>(env_lang.c_str()), nullptr};
+    const std::string dir_s = dir.path().string(), log_s = log_path.string();
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const pid_t pid = ::fork();
+    if (pid < 0) throw PovrayError(std::string("cannot start povray: ") + std::strerror(errno));
+    if (pid == 0) {
+        ::setpgid(0, 0);  // its own process group, so a time-out kills it whole
+        if (::chdir(dir_s.c_str()) != 0) ::_exit(126);
+        const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) {
+            ::dup2(fd, 1);
+            ::dup2(fd, 2);
+            ::close(fd);
+        }
+        const int devnull = ::open("/dev/null", O_RDONLY);
+        if (devnull >= 0) ::dup2(devnull, 0);
+        ::execve(exe.c_str(), argv.data(), envp);
+        ::_exit(127);
+    }
+    ::setpgid(pid, pid);
+    int status = 0;
+    bool timed_out = false;
+    while (true) {
+        const pid_t r = ::waitpid(pid, &status, WNOHANG);
+        if (r == pid) break;
+        if (r < 0 && errno != EINTR) throw PovrayError(std::string("waiting for povray: ") + std::strerror(errno));
+        const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (el > opt.timeout_seconds) {
+            ::kill(-pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            timed_out = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    PovrayRender out;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::string log;
+    try {
+        log = read_text_file(log_path.string());
+    } catch (const InputError&) {
+    }
+    out.version = version_line(log);
+    if (timed_out)
+        throw PovrayError("povray timed out after " + std::to_string(static_cast<int>(opt.timeout_seconds)) + " s", tail(log, 20));
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::string why = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
+                                            : "signal " + std::to_string(WTERMSIG(status));
+        const std::string err = first_error_line(log);
+        throw PovrayError("povray failed (" + why + ")" + (err.empty() ? "" : ": " + err), tail(log, 20));
+    }
+    try {
+        out.image = read_image(image.string());
+    } catch (const InputError& e) {
+        throw PovrayError(std::string("povray output unreadable: ") + e.what(), tail(log, 20));
+    }
+    if (out.image.width != width || out.image.height != height)
+        throw PovrayError("povray wrote a " + std::to_string(out.image.width) + "x" + std::to_string(out.image.height) +
+                              " image, expected " + std::to_string(width) + "x" + std::to_string(height),
+                          tail(log, 20));
+    return out;
+}
+
+}  // namespace refract::validation
