@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/json_reader.h"
+#include "geometry/gem/brilliant.h"
 #include "geometry/error.h"
 
 namespace refract {
@@ -137,6 +138,42 @@ int material_ref(const JsonReader& o, std::vector<Material>& materials, const st
     return static_cast<int>(materials.size()) - 1;
 }
 
+// A round-brilliant gem (geometry/gem/brilliant.h), built exactly, then placed: the cut's
+// axis (z, table up) becomes the scene's +y, then `rotation` (degrees about x, y, z, in
+// that order), scale to `diameter` (girdle diameter) and move to `position`.
+Shape parse_brilliant(const JsonReader& o) {
+    o.only({"type", "name", "material", "preset", "table", "crown_angle", "pavilion_angle", "star", "lower_half",
+            "girdle", "culet", "girdle_facets", "bruted_planes", "position", "diameter", "rotation"});
+    BrilliantCut cut = brilliant_preset(o.string("preset", "gia-default"));
+    cut.table = o.number("table", cut.table);
+    cut.crown_angle = o.number("crown_angle", cut.crown_angle);
+    cut.pavilion_angle = o.number("pavilion_angle", cut.pavilion_angle);
+    cut.star = o.number("star", cut.star);
+    cut.lower_half = o.number("lower_half", cut.lower_half);
+    cut.girdle = o.number("girdle", cut.girdle);
+    cut.culet = o.number("culet", cut.culet);
+    cut.girdle_facets = o.integer("girdle_facets", cut.girdle_facets, 0, 1 << 16);
+    cut.bruted_planes = o.integer("bruted_planes", cut.bruted_planes, 0, 1 << 16);
+    Gem gem;
+    try {
+        gem = build_brilliant(cut);
+    } catch (const InputError& e) {
+        o.fail(e.what());
+    }
+    const double scale = o.positive("diameter", 2.0) / 2.0;
+    const Vec3 pos = o.vec3("position", Vec3(0, 0, 0));
+    const Vec3 rot = o.vec3("rotation", Vec3(0, 0, 0)) * (M_PI / 180.0);
+    const Eigen::Matrix3d M = (Eigen::AngleAxisd(rot.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(rot.y(), Vec3::UnitY()) *
+                               Eigen::AngleAxisd(rot.x(), Vec3::UnitX()) *
+                               Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX())).toRotationMatrix();
+    ConvexPolyhedron c = gem.solid;
+    for (Plane& p : c.planes) {
+        p.normal = (M * p.normal).normalized();
+        p.offset = scale * p.offset + p.normal.dot(pos);
+    }
+    return c;
+}
+
 Shape parse_shape(const JsonReader& o, const std::string& type) {
     if (type == "sphere") {
         o.only({"type", "name", "material", "center", "radius"});
@@ -198,7 +235,8 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
         }
         return c;
     }
-    o.fail_at("type", "unknown object type '" + type + "' (sphere, plane, mesh, polyhedron)");
+    if (type == "brilliant") return parse_brilliant(o);
+    o.fail_at("type", "unknown object type '" + type + "' (sphere, plane, mesh, polyhedron, brilliant)");
 }
 
 RenderSettings parse_settings(const JsonReader& r) {
