@@ -1,6 +1,9 @@
 #pragma once
 // One driver per paper and study; each is registered in experiments/experiment.cpp.
 #include "experiments/experiment.h"
+#include "experiments/gem_geometry.h"
+#include "experiments/rtiow.h"
+#include "experiments/yasuda1984.h"
 
 namespace refract::experiments {
 }  // namespace refract::experiments

@@ -8,6 +8,15 @@ namespace refract::experiments {
 const std::vector<Experiment>& all() {
     static const std::vector<Experiment> list{
         // name, description, driver (experiments/drivers.h)
+        {"yasuda1984",
+         "Yasuda et al. 1984: Fig. 4 and 7 (reflectivity, transmissivity), Fig. 8 and 9 (spheres), cost and memory",
+         yasuda1984::run},
+        {"rtiow-dielectric",
+         "Ray Tracing in One Weekend, dielectric chapter: stages, Schlick error, 1/sqrt(spp) convergence",
+         rtiow::run},
+        {"gem-geometry",
+         "Round brilliant: facet drawings, proportions measured back, Fresnel diamond renders, plane-set vs mesh cost",
+         gem_geometry::run},
     };
     return list;
 }

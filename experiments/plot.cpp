@@ -1,0 +1,255 @@
+#include "experiments/plot.h"
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <signal.h>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <spawn.h>
+
+extern char** environ;
+
+namespace refract::experiments {
+namespace fs = std::filesystem;
+
+namespace {
+
+// A name beside `path` no other writer uses: pid and a process-wide counter.
+std::string temp_name(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+std::string gnuplot_quote(const std::string& s) {  // single-quoted gnuplot string
+    std::string out = "'";
+    for (char c : s) out += (c == '\'') ? std::string("''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string last_line(const std::string& text) {
+    std::istringstream in(text);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (line.find_first_not_of(" \t\r^") != std::string::npos) last = line;
+    return last;
+}
+
+}  // namespace
+
+void write_text_atomic(const std::string& path, const std::string& text) {
+    const std::string tmp = temp_name(path);
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out) throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
+        out << text;
+        out.flush();
+        if (!out) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error(path + ": write failed");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error(path + ": cannot rename the temporary file into place");
+    }
+}
+
+std::string fmt(double v) {
+    char buf[40];
+    for (int digits = 6; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (std::strtod(buf, nullptr) == v) break;
+    }
+    return buf;
+}
+
+std::string fmt(double v, int significant) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.*g", significant, v);
+    return buf;
+}
+
+std::string Csv::text() const {
+    std::string s;
+    auto line = [&s](const std::vector<std::string>& cells) {
+        for (size_t k = 0; k < cells.size(); ++k) s += (k ? "," : "") + cells[k];
+        s += "\n";
+    };
+    line(header);
+    for (const auto& r : rows) line(r);
+    return s;
+}
+
+void write_csv(const std::string& path, const Csv& table) {
+    for (const auto& r : table.rows)
+        if (r.size() != table.header.size())
+            throw std::logic_error(path + ": a row has " + std::to_string(r.size()) + " cells, the header " +
+                                   std::to_string(table.header.size()));
+    write_text_atomic(path, table.text());
+}
+
+Csv read_csv(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open CSV file");
+    Csv t;
+    std::string line;
+    bool first = true;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ',')) cells.push_back(cell);
+        if (first) t.header = cells;
+        else t.rows.push_back(cells);
+        first = false;
+    }
+    return t;
+}
+
+bool gnuplot_available() {
+    const char* path = std::getenv("PATH");
+    if (!path) return false;
+    std::stringstream ss(path);
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+        if (dir.empty()) continue;
+        if (::access((fs::path(dir) / "gnuplot").c_str(), X_OK) == 0) return true;
+    }
+    return false;
+}
+
+void gnuplot_figure(const std::string& dir, const std::string& name, const std::string& body, const FigureSize& size,
+                    double time_limit_s) {
+    const fs::path base = fs::path(dir) / name;
+    std::ostringstream gp;
+    gp << "# " << name << ": drawn by refract; run `gnuplot " << name << ".gp` in this directory to redraw\n"
+       << "# " << name << ".png and " << name << ".pdf from the CSV files beside it.\n"
+       << "if (!exists(\"outbase\")) outbase = \"" << name << "\"\n"
+       << "do for [fmt in \"png pdf\"] {\n"
+       << "reset\n"
+       << "if (fmt eq \"png\") {\n"
+       << "  set terminal pngcairo size " << size.width_px << "," << size.height_px
+       << " enhanced font \"Sans,12\" linewidth 1.5\n"
+       << "} else {\n"
+       << "  set terminal pdfcairo size " << size.width_in << "in," << size.height_in
+       << "in enhanced font \"Sans,9\" linewidth 1.5\n"
+       << "}\n"
+       << "set output outbase.\".\".fmt\n"
+       << body << (body.empty() || body.back() == '\n' ? "" : "\n")
+       << "set output\n"
+       << "}\n";
+    write_text_atomic(base.string() + ".gp", gp.str());
+
+    if (!gnuplot_available())
+        throw std::runtime_error("gnuplot not found on PATH: install it (Debian: apt-get install gnuplot-nox) to draw " +
+                                 base.string() + ".png/.pdf; the CSV files and " + name + ".gp are written");
+
+    const std::string tmp_base = fs::path(temp_name(name)).filename().string();
+    const std::string log = temp_name(base.string()) + ".log";
+    const std::string setup = "cd " + gnuplot_quote(dir) + "; outbase=" + gnuplot_quote(tmp_base);
+    const std::string script = name + ".gp";
+    std::vector<std::string> args{"gnuplot", "-e", setup, script};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    std::error_code ec;
+    auto cleanup = [&] {
+        fs::remove(log, ec);
+        fs::remove(fs::path(dir) / (tmp_base + ".png"), ec);
+        fs::remove(fs::path(dir) / (tmp_base + ".pdf"), ec);
+    };
+    if (rc != 0) {
+        cleanup();
+        throw std::runtime_error("cannot start gnuplot for " + base.string() + ".gp: " + std::strerror(rc));
+    }
+    // Wait with a time limit; gnuplot that hangs is killed.
+    const auto t0 = std::chrono::steady_clock::now();
+    int status = 0;
+    bool timed_out = false;
+    while (true) {
+        const pid_t w = ::waitpid(pid, &status, WNOHANG);
+        if (w == pid) break;
+        if (w < 0 && errno != EINTR) break;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > time_limit_s) {
+            ::kill(pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            timed_out = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    std::string log_text;
+    {
+        std::ifstream in(log);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        log_text = ss.str();
+    }
+    if (timed_out) {
+        cleanup();
+        throw std::runtime_error("gnuplot " + base.string() + ".gp: killed after " + fmt(time_limit_s, 3) + " s");
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        cleanup();
+        throw std::runtime_error("gnuplot " + base.string() + ".gp failed: " + last_line(log_text));
+    }
+    for (const char* ext : {".png", ".pdf"}) {
+        const fs::path from = fs::path(dir) / (tmp_base + ext);
+        if (!fs::exists(from)) {
+            cleanup();
+            throw std::runtime_error("gnuplot " + base.string() + ".gp wrote no " + ext + " file: " + last_line(log_text));
+        }
+        fs::rename(from, base.string() + ext, ec);
+        if (ec) {
+            cleanup();
+            throw std::runtime_error(base.string() + ext + ": cannot rename the temporary figure into place");
+        }
+    }
+    fs::remove(log, ec);
+}
+
+void image_grid_figure(const std::string& dir, const std::string& name, int rows, int cols,
+                       const std::vector<Panel>& panels, const std::string& title, double aspect, int panel_px) {
+    // Pixel budget: panels, a caption line above each, the title line on top.
+    const double caption_px = 30, title_px = 44;
+    const double w = cols * panel_px, h = rows * (panel_px * aspect + caption_px) + title_px;
+    std::ostringstream b;
+    b << "set multiplot layout " << rows << "," << cols << " margins 0.004,0.996,0.004," << 1 - title_px / h
+      << " spacing 0.006," << caption_px / h << " title \"" << title << "\" font \",13\"\n"
+      << "unset border; unset tics; unset key; set size ratio -1\n";
+    for (const auto& p : panels)
+        b << "set title \"" << p.caption << "\" offset 0,-0.6\n"
+          << "plot '" << p.file << "' binary filetype=png with rgbimage\n";
+    b << "unset multiplot\n";
+    FigureSize size;
+    size.width_px = static_cast<int>(w);
+    size.height_px = static_cast<int>(h);
+    size.width_in = w / 130.0;
+    size.height_in = h / 130.0;
+    gnuplot_figure(dir, name, b.str(), size);
+}
+
+}  // namespace refract::experiments
