@@ -1,0 +1,77 @@
+// The `refract` command on bad input: one line on stderr, exit code 2, no output file.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int code;
+    std::string err;
+};
+
+Run run(const std::string& args, const fs::path& dir) {
+    const fs::path err = dir / "stderr.txt";
+    const std::string cmd = std::string(REFRACT_EXE) + " " + args + " 2>" + err.string() + " >/dev/null";
+    const int status = std::system(cmd.c_str());
+    std::ifstream f(err);
+    std::stringstream s;
+    s << f.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+}
+
+int count_lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("refract render: bad scenes exit 2 with one line and write nothing", "[cli][errors]") {
+    const fs::path dir = fs::temp_directory_path() / "refract-cli-test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path scene = dir / "bad.json";
+    const fs::path out = dir / "out.png";
+    const char* cases[] = {
+        R"({"camera": {"width": 8, "height": 6}, "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1,
+            "material": {"type": "dielectric", "ior": -1}}]})",
+        R"({"camera": {"width": 0, "height": 6}, "objects": []})",
+        R"({"camera": {"width": 8, "height": 6}, "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1e999,
+            "material": {"type": "diffuse"}}]})",
+        R"({"camera": {"width": 8, "height": 6}, "objects": [})",
+    };
+    for (const char* text : cases) {
+        std::ofstream{scene} << text;
+        const Run r = run("render " + scene.string() + " -o " + out.string(), dir);
+        INFO(r.err);
+        CHECK(r.code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find("bad.json") != std::string::npos);
+        CHECK_FALSE(fs::exists(out));
+    }
+    const Run missing = run("render " + (dir / "nope.json").string() + " -o " + out.string(), dir);
+    CHECK(missing.code == 2);
+    CHECK(missing.err.find("nope.json") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("refract render writes the image and prints the counters", "[cli]") {
+    const fs::path dir = fs::temp_directory_path() / "refract-cli-ok";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 16, "height": 12},
+        "background": [1, 1, 1], "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1,
+        "material": {"type": "dielectric", "ior": 1.5}}], "render": {"threshold": 0, "max_depth": 200}})";
+    const Run r = run("render " + (dir / "s.json").string() + " -o " + (dir / "s.exr").string() + " --stats", dir);
+    CHECK(r.code == 0);
+    CHECK(fs::exists(dir / "s.exr"));
+    fs::remove_all(dir);
+}
