@@ -52,7 +52,7 @@ json render_scene(const std::string& preset, bool quick) {
         {"description", "Round brilliant, preset '" + preset +
                             "', as a Fresnel diamond (n = 2.417, no dispersion) on a checker floor, point light"},
         {"camera",
-         {{"location", vec(0.6, 3.4, -3.6)}, {"look_at", vec(0, 0.75, 0)}, {"angle", 38},
+         {{"location", vec(1.0, 5.0, -5.6)}, {"look_at", vec(0, 0.6, 0)}, {"angle", 34},
           {"width", quick ? 80 : 480}, {"height", quick ? 60 : 360}}},
         {"background", vec(0.55, 0.7, 0.9)},
         {"materials", {{"floor", floor}, {"diamond", {{"type", "dielectric"}, {"ior", 2.417}}}}},
@@ -187,7 +187,7 @@ void run(const ExperimentOptions& opt) {
     Csv prop;
     prop.header = {"preset", "quantity", "unit", "source", "expected", "measured", "abs_diff"};
     std::ostringstream md;
-    md << "| preset | quantity | unit | source | expected | measured | |Δ| |\n|---|---|---|---|---:|---:|---:|\n";
+    md << "| preset | quantity | unit | source | expected | measured | abs diff |\n|---|---|---|---|---:|---:|---:|\n";
     Csv facets;
     facets.header = {"preset", "kind", "count"};
     std::vector<Gem> gems;
