@@ -6,13 +6,17 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/illumination_map.h"
 #include "core/integrators/fresnel_tree.h"
+#include "core/integrators/spectral.h"
+#include "core/light_pass.h"
 #include "core/integrators/stochastic.h"
 #include "core/integrators/whitted.h"
 #include "core/random.h"
@@ -29,6 +33,14 @@ void RenderStats::merge(const RenderStats& o) {
     pruned += o.pruned;
     depth_limited += o.depth_limited;
     peak_list = std::max(peak_list, o.peak_list);
+    spectral_splits += o.spectral_splits;
+    shortcut_tests += o.shortcut_tests;
+    shortcut_taken += o.shortcut_taken;
+    wavelength_segments += o.wavelength_segments;
+    photons += o.photons;
+    photon_segments += o.photon_segments;
+    deposits += o.deposits;
+    light_seconds += o.light_seconds;
 }
 
 std::string RenderStats::summary() const {
@@ -41,6 +53,16 @@ std::string RenderStats::summary() const {
       << "depth-limited     " << depth_limited << "\n"
       << "peak list / tree  " << peak_list << "\n"
       << "wall time (s)     " << seconds << "\n";
+    if (spectral_splits > 0 || shortcut_tests > 0)
+        s << "spectral splits   " << spectral_splits << "\n"
+          << "shortcut tests    " << shortcut_tests << "\n"
+          << "shortcut taken    " << shortcut_taken << "\n"
+          << "wavelength segs   " << wavelength_segments << "\n";
+    if (photons > 0)
+        s << "photons           " << photons << "\n"
+          << "photon segments   " << photon_segments << "\n"
+          << "map deposits      " << deposits << "\n"
+          << "light pass (s)    " << light_seconds << "\n";
     if (seconds > 0) s << "segments/s        " << static_cast<double>(segments) / seconds << "\n";
     return s.str();
 }
@@ -59,7 +81,7 @@ void validate(const Scene& scene) {
             throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
 }
 
-Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats) {
+Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral) {
     const Scene& scene = tracer.scene();
     const RenderSettings& s = scene.settings;
     const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
@@ -73,13 +95,17 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats) {
         }
         const Ray ray = scene.camera.ray(x, y);
         ++stats.primary_rays;
+        if (spectral) {
+            sum += spectral_radiance(tracer, *spectral, ray, stats);
+            continue;
+        }
         switch (s.integrator) {
             case IntegratorKind::Whitted: sum += whitted_radiance(tracer, ray, stats); break;
             case IntegratorKind::FresnelTree: sum += fresnel_tree_radiance(tracer, ray, stats); break;
             case IntegratorKind::Stochastic: sum += stochastic_radiance(tracer, ray, rng, stats); break;
         }
     }
-    return sum / s.samples;
+    return spectral ? spectral->finish(sum / s.samples) : Vec3(sum / s.samples);
 }
 
 }  // namespace
@@ -88,7 +114,16 @@ Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
     validate(scene);
     SceneTracer tracer(scene);
     RenderStats local;
-    const Vec3 v = pixel_value(tracer, i, j, local);
+    std::optional<SpectralContext> ctx;
+    std::shared_ptr<IlluminationMaps> maps;
+    if (scene.settings.spectral.enabled) {
+        ctx = SpectralContext::build(scene);
+        if (scene.settings.light_pass.enabled) {
+            maps = light_pass(scene, *ctx);
+            ctx->maps = maps.get();
+        }
+    }
+    const Vec3 v = pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr);
     if (stats) stats->merge(local);
     return v;
 }
@@ -97,6 +132,24 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     validate(scene);
     const auto t0 = std::chrono::steady_clock::now();
     SceneTracer tracer(scene);
+    const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
+    std::optional<SpectralContext> ctx;
+    std::shared_ptr<const IlluminationMaps> maps = opt.maps;
+    RenderStats light_stats;
+    if (scene.settings.spectral.enabled) {
+        ctx = SpectralContext::build(scene);
+        if (scene.settings.light_pass.enabled) {
+            if (!maps) {
+                maps = light_pass(scene, *ctx, threads);
+                light_stats.light_seconds = maps->seconds;
+            }
+            light_stats.photons = maps->photons;
+            light_stats.photon_segments = maps->segments;
+            light_stats.deposits = maps->deposits;
+            ctx->maps = maps.get();
+        }
+    }
+    const SpectralContext* spectral = ctx ? &*ctx : nullptr;
     const int W = scene.camera.width, H = scene.camera.height;
     RenderResult result{Image(W, H), {}};
     constexpr int kTile = 16;
@@ -111,7 +164,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 RenderStats& st = tile_stats[static_cast<size_t>(ty) * tiles_x + tx];
                 for (int j = ty * kTile; j < std::min(H, (ty + 1) * kTile); ++j)
                     for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i)
-                        result.image.set(i, j, pixel_value(tracer, i, j, st));
+                        result.image.set(i, j, pixel_value(tracer, i, j, st, spectral));
                 const int d = ++done;
                 if (opt.progress) {
                     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -125,10 +178,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 }
             }
     };
-    const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
     tbb::task_arena arena(threads);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), body); });
     for (const auto& st : tile_stats) result.stats.merge(st);
+    result.stats.merge(light_stats);
     result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Rendering a scene: tiles over oneTBB, deterministic whatever the thread count.
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "core/image.h"
@@ -17,15 +18,30 @@ struct RenderStats {
     std::uint64_t pruned = 0;          // branches dropped under the threshold
     std::uint64_t depth_limited = 0;   // branches dropped at the depth limit
     std::uint64_t peak_list = 0;       // fresnel-tree: longest FIFO list; whitted: largest stored tree
-    double seconds = 0;                // wall time of the render
+    // Spectral eye pass (core/integrators/spectral.h).
+    std::uint64_t spectral_splits = 0;      // rays split per wavelength (first transparent hit)
+    std::uint64_t shortcut_tests = 0;       // three-wavelength tests made
+    std::uint64_t shortcut_taken = 0;       // ... that skipped the full split
+    std::uint64_t wavelength_segments = 0;  // segments traced by single-wavelength rays
+    // Light pass (core/light_pass.h).
+    std::uint64_t photons = 0;              // photons shot
+    std::uint64_t photon_segments = 0;      // their ray segments
+    std::uint64_t deposits = 0;             // hits stored in an illumination map
+    double light_seconds = 0;               // wall time of the light pass
+    double seconds = 0;                     // wall time of the render (light + eye pass)
 
     void merge(const RenderStats& o);
     std::string summary() const;       // multi-line text for --stats
 };
 
+struct IlluminationMaps;
+
 struct RenderOptions {
     int threads = 0;        // 0: all cores
     bool progress = false;  // progress bar on stderr (callers pass isatty(2))
+    // Illumination maps of an earlier light pass of the same scene (render.light_pass):
+    // used instead of running the light pass again.
+    std::shared_ptr<const IlluminationMaps> maps;
 };
 
 struct RenderResult {

@@ -1,5 +1,6 @@
 #pragma once
 // The in-memory scene: what a scene file (docs/scene-format.md) describes.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -7,6 +8,9 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/spectrum/cie.h"
+#include "core/spectrum/dispersion.h"
+#include "core/spectrum/wavelengths.h"
 #include "geometry/shapes.h"
 
 namespace refract {
@@ -45,7 +49,9 @@ struct Material {
     double constant_reflectivity = 0.0;  // Constant model
     Vec3 filter{1, 1, 1};                // Dielectric: transmitted colour per crossing
     double fuzz = 0.0;                   // Metal
-    std::string dispersion;              // Dielectric: catalogue name or model (spectral)
+    // Dielectric: index as a function of wavelength (catalogue name or model in the scene
+    // file); `ior` stays the nominal index (Dispersion::nominal() when `ior` is absent).
+    std::optional<spectrum::Dispersion> dispersion;
 };
 
 using Shape = std::variant<Sphere, Plane, TriangleMesh, ConvexPolyhedron>;
@@ -69,6 +75,30 @@ struct Background {
     Vec3 top{0.5, 0.7, 1.0}; // Gradient at dir.y = +1
 };
 
+// Spectral eye pass (Ohtsuka & Kawai 1998): render.spectral in the scene file.
+struct SpectralSettings {
+    bool enabled = false;  // on when the block is given or a material has a dispersion
+    spectrum::WavelengthSampling sampling;  // 400–700 nm every 10 nm
+    spectrum::ColourPipeline pipeline = spectrum::ColourPipeline::CieRgb;
+    spectrum::LightSpectrum light;          // the lights' spectrum (equal energy)
+    bool shortcut = false;                  // three-wavelength test before the full split
+    std::array<double, 3> shortcut_wavelengths{610.0, 545.0, 445.0};
+    double shortcut_threshold = 0.01;       // RGB distance of the three contributions
+    int max_reflections = 8;                // per path (the paper's limits)
+    int max_transmissions = 8;
+};
+
+// Light pass (bidirectional ray tracing): photons from each point light at the transparent
+// objects, deposited in illumination maps of the diffuse surfaces (render.light_pass).
+struct LightPassSettings {
+    bool enabled = false;
+    std::uint64_t photons = 200000;  // per light
+    double element_size = 0.02;      // edge of an illumination-map element (scene units)
+    double region = 3.0;             // plane maps: half-size of the square under the gems,
+                                     // in units of the gems' bounding radius
+    std::uint64_t seed = 7;
+};
+
 enum class IntegratorKind { Whitted, FresnelTree, Stochastic };
 enum class Compat { Physical, PovRay };
 
@@ -84,6 +114,8 @@ struct RenderSettings {
     bool jitter = false;      // jittered supersampling inside the pixel
     std::uint64_t seed = 1;   // stochastic integrator and jitter
     Compat compat = Compat::Physical;
+    SpectralSettings spectral;
+    LightPassSettings light_pass;
 };
 
 struct Scene {

@@ -64,7 +64,7 @@ Background parse_background(const json& v, const std::string& file) {
     return b;
 }
 
-Material parse_material(const JsonReader& r, const std::string& name) {
+Material parse_material(const JsonReader& r, const std::string& name, const std::string& file) {
     Material m;
     m.name = name;
     const std::string type = r.string("type");
@@ -109,7 +109,10 @@ Material parse_material(const JsonReader& r, const std::string& name) {
             r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
         }
         m.filter = r.vec3("filter", m.filter);
-        m.dispersion = r.string("dispersion", "");
+        if (r.has("dispersion")) {
+            m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
+            if (!r.has("ior")) m.ior = m.dispersion->nominal();
+        }
         return m;
     } else {
         r.fail_at("type", "unknown material type '" + type +
@@ -126,7 +129,8 @@ Material parse_material(const JsonReader& r, const std::string& name) {
     return m;
 }
 
-int material_ref(const JsonReader& o, std::vector<Material>& materials, const std::map<std::string, int>& by_name) {
+int material_ref(const JsonReader& o, std::vector<Material>& materials, const std::map<std::string, int>& by_name,
+                 const std::string& file) {
     const auto& v = o.raw("material");
     if (v.is_string()) {
         const auto it = by_name.find(v.get<std::string>());
@@ -134,7 +138,7 @@ int material_ref(const JsonReader& o, std::vector<Material>& materials, const st
         return it->second;
     }
     if (!v.is_object()) o.fail_at("material", "must be a material name or a material object");
-    materials.push_back(parse_material(o.child("material"), o.path_of("material")));
+    materials.push_back(parse_material(o.child("material"), o.path_of("material"), file));
     return static_cast<int>(materials.size()) - 1;
 }
 
@@ -171,6 +175,9 @@ Shape parse_brilliant(const JsonReader& o) {
         p.normal = (M * p.normal).normalized();
         p.offset = scale * p.offset + p.normal.dot(pos);
     }
+    std::vector<Vec3> placed;
+    for (const Vec3& v : gem.mesh.vertices) placed.push_back(scale * (M * v) + pos);
+    set_bound(c, placed);
     return c;
 }
 
@@ -239,8 +246,68 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
     o.fail_at("type", "unknown object type '" + type + "' (sphere, plane, mesh, polyhedron, brilliant)");
 }
 
-RenderSettings parse_settings(const JsonReader& r) {
-    r.only({"integrator", "max_depth", "threshold", "samples", "jitter", "seed", "compat"});
+SpectralSettings parse_spectral(const JsonReader& r, const std::string& file) {
+    r.only({"range", "step", "pipeline", "light", "shortcut", "shortcut_wavelengths", "shortcut_threshold",
+            "max_reflections", "max_transmissions"});
+    SpectralSettings s;
+    s.enabled = true;
+    if (r.has("range")) {
+        const auto& v = r.raw("range");
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+            r.fail_at("range", "must be [min_nm, max_nm]");
+        s.sampling.min_nm = v[0].get<double>();
+        s.sampling.max_nm = v[1].get<double>();
+    }
+    s.sampling.step_nm = r.number("step", s.sampling.step_nm);
+    spectrum::validate(s.sampling, file + ": " + r.path());
+    if (r.has("pipeline")) s.pipeline = spectrum::parse_colour_pipeline(r.string("pipeline"), file + ": " + r.path_of("pipeline"));
+    if (r.has("light")) {
+        const auto& v = r.raw("light");
+        if (v.is_string() && v.get<std::string>() == "equal") s.light = spectrum::LightSpectrum{};
+        else if (v.is_string() && v.get<std::string>() == "d65") s.light = spectrum::LightSpectrum{spectrum::Illuminant::D65};
+        else s.light = spectrum::parse_light_spectrum(v, file + ": " + r.path_of("light"));
+    }
+    s.shortcut = r.boolean("shortcut", s.shortcut);
+    if (r.has("shortcut_wavelengths")) {
+        const auto& v = r.raw("shortcut_wavelengths");
+        if (!v.is_array() || v.size() != 3) r.fail_at("shortcut_wavelengths", "must be three wavelengths in nm");
+        for (int k = 0; k < 3; ++k) {
+            if (!v[k].is_number() || !(v[k].get<double>() >= spectrum::kMinWavelength) ||
+                !(v[k].get<double>() <= spectrum::kMaxWavelength))
+                r.fail_at("shortcut_wavelengths", "each must be a number in [360, 830] nm");
+            s.shortcut_wavelengths[k] = v[k].get<double>();
+        }
+    }
+    s.shortcut_threshold = r.number("shortcut_threshold", s.shortcut_threshold);
+    if (s.shortcut_threshold < 0) r.fail_at("shortcut_threshold", "must be >= 0");
+    s.max_reflections = r.integer("max_reflections", s.max_reflections, 0, 10000);
+    s.max_transmissions = r.integer("max_transmissions", s.max_transmissions, 0, 10000);
+    return s;
+}
+
+LightPassSettings parse_light_pass(const JsonReader& r) {
+    r.only({"enabled", "photons", "element_size", "region", "seed"});
+    LightPassSettings s;
+    s.enabled = r.boolean("enabled", true);
+    if (r.has("photons")) {
+        const auto& v = r.raw("photons");
+        if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > (1ll << 34))
+            r.fail_at("photons", "must be an integer in [1, 2^34]");
+        s.photons = static_cast<std::uint64_t>(v.get<long long>());
+    }
+    s.element_size = r.positive("element_size", s.element_size);
+    s.region = r.positive("region", s.region);
+    if (r.has("seed")) {
+        const auto& v = r.raw("seed");
+        if (!v.is_number_integer() || (!v.is_number_unsigned() && v.get<long long>() < 0))
+            r.fail_at("seed", "must be a non-negative integer");
+        s.seed = v.get<std::uint64_t>();
+    }
+    return s;
+}
+
+RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
+    r.only({"integrator", "max_depth", "threshold", "samples", "jitter", "seed", "compat", "spectral", "light_pass"});
     RenderSettings s;
     const std::string integ = r.string("integrator", "fresnel-tree");
     if (integ == "whitted") s.integrator = IntegratorKind::Whitted;
@@ -261,6 +328,8 @@ RenderSettings parse_settings(const JsonReader& r) {
     if (compat == "physical") s.compat = Compat::Physical;
     else if (compat == "povray") s.compat = Compat::PovRay;
     else r.fail_at("compat", "unknown mode '" + compat + "' (physical, povray)");
+    if (r.has("spectral")) s.spectral = parse_spectral(r.child("spectral"), file);
+    if (r.has("light_pass")) s.light_pass = parse_light_pass(r.child("light_pass"));
     return s;
 }
 
@@ -279,7 +348,7 @@ Scene parse_scene(const json& j, const std::string& file) {
         const JsonReader ms = root.child("materials");
         for (const auto& [name, value] : j.at("materials").items()) {
             (void)value;
-            s.materials.push_back(parse_material(ms.child(name), name));
+            s.materials.push_back(parse_material(ms.child(name), name, file));
             by_name[name] = static_cast<int>(s.materials.size()) - 1;
         }
     }
@@ -291,7 +360,7 @@ Scene parse_scene(const json& j, const std::string& file) {
         Object obj;
         obj.name = o.string("name", "object " + std::to_string(k));
         obj.shape = parse_shape(o, o.string("type"));
-        obj.material = material_ref(o, s.materials, by_name);
+        obj.material = material_ref(o, s.materials, by_name, file);
         s.objects.push_back(std::move(obj));
     }
     if (root.has("lights")) {
@@ -306,7 +375,10 @@ Scene parse_scene(const json& j, const std::string& file) {
             s.lights.push_back(PointLight{l.vec3("position"), l.vec3("color", Vec3(1, 1, 1))});
         }
     }
-    if (root.has("render")) s.settings = parse_settings(root.child("render"));
+    if (root.has("render")) s.settings = parse_settings(root.child("render"), file);
+    for (const Material& m : s.materials)
+        if (m.dispersion) s.settings.spectral.enabled = true;
+    if (s.settings.light_pass.enabled) s.settings.spectral.enabled = true;  // the maps are read by the spectral pass
     return s;
 }
 
@@ -316,10 +388,11 @@ Scene load_scene(const std::string& path) {
     json j;
     try {
         j = json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // syntax errors, and numbers too large for a double
         // e.byte locates the error; the message says what was expected.
         std::string what = e.what();
-        const auto pos = what.find("parse error");
+        auto pos = what.find("] ");
+        if (pos != std::string::npos) pos += 2;
         throw InputError(path + ": malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
     }
     return parse_scene(j, path);

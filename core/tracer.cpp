@@ -140,7 +140,7 @@ double SceneTracer::reflectance(const Material& m, double cos_i, double eta) {
     return 1.0;
 }
 
-Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats) const {
+Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior) const {
     const Material& m = *h.material;
     const bool pov = scene_.settings.compat == Compat::PovRay;
     Node n;
@@ -164,12 +164,13 @@ Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats) 
     ++stats.tree_nodes;
     // POV-Ray stores an interior's ior in single precision (frame.h, class Interior):
     // n = 1.333 refracts as 1.33299994..., which moves far-away hits by ~0.1 unit.
-    const double ior = pov ? static_cast<double>(static_cast<float>(m.ior)) : m.ior;
+    const double nominal = pov ? static_cast<double>(static_cast<float>(m.ior)) : m.ior;
+    const double ior = band_ior > 0 ? band_ior : nominal;
     const double eta = h.entering ? ior : 1.0 / ior;
     const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
     const auto refr = optics::refract(ray.dir, h.normal, eta);
     if (pov) {
-        n = dielectric_node_pov(h, ray, cos_i, eta, refr);
+        n = dielectric_node_pov(h, ray, cos_i, h.entering ? nominal : 1.0 / nominal, refr, band_ior > 0);
         return n;
     }
     // Constant reflectivity (Whitted, Fig. 9) keeps its ks even where the direction
@@ -192,12 +193,13 @@ Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats) 
 }
 
 Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
-                                      const std::optional<Vec3>& refr) const {
+                                      const std::optional<Vec3>& refr, bool band) const {
     // POV-Ray 3.7 with `reflection { MIN, MAX fresnel on } conserve_energy` or
     // `reflection { ks } conserve_energy` and `pigment { rgbf <filter, 1> }`
     // (trace.cpp ComputeLightedTexture, ComputeReflectivity, ComputeRefraction):
     // - reflectivity R: the model's value; on total internal reflection Fresnel gives
-    //   MAX = 1, a constant ks stays ks;
+    //   MAX = 1, a constant ks stays ks (dispersion: Fresnel with the nominal index, the
+    //   TIR test with the band's);
     // - the surface's filter colour is filter·(1 − R), and a refracted ray is spawned only
     //   when its greyscale exceeds adc_bailout (a local test, not the cumulative weight);
     //   its adc weight is parent × max3(filter·(1 − R));
@@ -209,7 +211,9 @@ Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, doubl
     const RenderSettings& s = scene_.settings;
     const double adc = s.integrator == IntegratorKind::Whitted ? 0.0 : s.threshold;
     double R = reflectance(m, cos_i, eta);
-    if (!refr && m.reflectance != ReflectanceModel::Constant) R = 1.0;
+    // A band ray (dispersion) keeps the nominal index's R even where its own index meets
+    // total internal reflection; the refracted ray then turns into the mirror ray below.
+    if (!refr && !band && m.reflectance != ReflectanceModel::Constant) R = 1.0;
     const Vec3 filter = (1.0 - R) * m.filter;
     const double trans = std::fmin(1.0, std::abs(filter.dot(kPovGreyscale)));
     const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()};

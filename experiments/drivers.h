@@ -2,6 +2,7 @@
 // One driver per paper and study; each is registered in experiments/experiment.cpp.
 #include "experiments/experiment.h"
 #include "experiments/gem_geometry.h"
+#include "experiments/ohtsuka1998.h"
 #include "experiments/rtiow.h"
 #include "experiments/yasuda1984.h"
 

@@ -17,6 +17,9 @@ const std::vector<Experiment>& all() {
         {"gem-geometry",
          "Round brilliant: facet drawings, proportions measured back, Fresnel diamond renders, plane-set vs mesh cost",
          gem_geometry::run},
+        {"ohtsuka1998",
+         "Ohtsuka & Kawai 1998: dispersion in a diamond, light + eye pass, shortcut speed-up, wavelength/element/threshold studies",
+         ohtsuka1998::run},
     };
     return list;
 }

@@ -1,6 +1,7 @@
 #include "geometry/shapes.h"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
 
 namespace refract {
@@ -61,6 +62,12 @@ std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, 
 }
 
 std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max) {
+    if (c.bound_radius > 0) {
+        const Vec3 oc = r.origin - c.bound_center;
+        const double b = oc.dot(r.dir);
+        const double q = oc.squaredNorm() - c.bound_radius * c.bound_radius;
+        if (q > 0 && (b > 0 || b * b < q)) return std::nullopt;  // outside and missing the sphere
+    }
     // Slab method over half-spaces n·x <= d: the ray is inside on [t_enter, t_exit],
     // t_enter = largest entering t, t_exit = smallest leaving t.
     double t_enter = -std::numeric_limits<double>::infinity();
@@ -87,6 +94,19 @@ std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_m
     if (t_exit > t_min && t_exit < t_max && f_exit >= 0)
         return Hit{t_exit, r.at(t_exit), c.planes[f_exit].normal, f_exit};
     return std::nullopt;
+}
+
+void set_bound(ConvexPolyhedron& c, const std::vector<Vec3>& vertices) {
+    if (vertices.empty()) return;
+    Vec3 lo = vertices[0], hi = vertices[0];
+    for (const auto& v : vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    c.bound_center = 0.5 * (lo + hi);
+    double r = 0;
+    for (const auto& v : vertices) r = std::max(r, (v - c.bound_center).norm());
+    c.bound_radius = r * (1 + 1e-9) + 1e-12;
 }
 
 std::optional<Bounds> bounds(const Sphere& s) {

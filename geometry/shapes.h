@@ -39,7 +39,13 @@ struct TriangleMesh {
 struct ConvexPolyhedron {
     std::vector<Plane> planes;
     std::vector<std::string> labels;  // one per plane (facet names), may be empty
+    // Optional bounding sphere (radius > 0): rays that miss it skip the plane loop.
+    Vec3 bound_center{0, 0, 0};
+    double bound_radius = 0;
 };
+
+// Bounding sphere of a convex polyhedron from its vertices (the builder knows them).
+void set_bound(ConvexPolyhedron& c, const std::vector<Vec3>& vertices);
 
 std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double t_max);

@@ -148,7 +148,7 @@ TEST_CASE("POV-Ray export refuses what POV-Ray cannot express", "[validation]") 
                Contains("polarised"));
     {
         Scene s = scene_from(g);
-        s.materials[1].dispersion = "BK7";
+        s.materials[1].dispersion = spectrum::catalogue("BK7");
         CHECK_THROWS_WITH(export_pov(s), Contains("dispersion"));
     }
     CHECK_THAT(refusal(with(g, R"("ior": 1.5, "filter")", R"("ior": 1, "filter")")), Contains("ior 1"));
@@ -412,10 +412,14 @@ TEST_CASE("refract (compat povray) and POV-Ray 3.7 agree on the validation scene
     opt.scenes_dir = source_scenes().string();
     opt.out_dir = dir.path.string();
     opt.threads = 2;
-    opt.cases = {"fresnel-sphere", "fig8-n1.333", "constant-tir", "hollow-sphere", "mesh-icosahedron", "bailout-depth"};
+    // Every case of scenes/validation: nothing skipped, nothing failed.
     const SuiteResult r = run_suite(opt);
     INFO(format_table(r));
-    CHECK(r.passed == static_cast<int>(opt.cases.size()));
+    CHECK(r.cases.size() == list_cases(opt.scenes_dir).size());
+    CHECK(r.cases.size() >= 26);
+    CHECK(r.skipped == 0);
+    CHECK(r.failed == 0);
+    CHECK(r.passed == static_cast<int>(r.cases.size()));
     for (const CaseResult& c : r.cases)
         for (const Metric& m : c.metrics)
             if (m.name == "compat vs povray: rmse") CHECK(m.value < 2e-5);  // about the 16-bit output step

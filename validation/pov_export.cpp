@@ -62,6 +62,14 @@ void check_settings(const Scene& s, const Refuser& refuse) {
     if (r.samples > 1 && r.jitter)
         refuse("/render/jitter", "jittered supersampling (" + std::to_string(r.samples) +
                                      " samples) differs from POV-Ray's antialiasing");
+    if (r.light_pass.enabled)
+        refuse("/render/light_pass", "the light pass (illumination maps) has no exact POV-Ray counterpart (photons are statistical)");
+    if (r.spectral.enabled &&
+        (r.spectral.max_reflections < r.max_depth || r.spectral.max_transmissions < r.max_depth))
+        refuse("/render/spectral", "separate limits on reflections (" + std::to_string(r.spectral.max_reflections) +
+                                       ") and transmissions (" + std::to_string(r.spectral.max_transmissions) +
+                                       ") below max_depth " + std::to_string(r.max_depth) +
+                                       " (POV-Ray has max_trace_level only)");
     if (r.max_depth + 1 > 256)
         refuse("/render/max_depth", "max_depth " + std::to_string(r.max_depth) +
                                         " needs max_trace_level " + std::to_string(r.max_depth + 1) + " > 256");
@@ -79,9 +87,9 @@ void check_material(const Material& m, const Refuser& refuse) {
                 refuse(material_where(m), "metal with fuzz " + pov_number(m.fuzz) + " scatters randomly (path tracing)");
             return;
         case MaterialKind::Dielectric:
-            if (!m.dispersion.empty())
-                refuse(material_where(m), "dispersion '" + comment_text(m.dispersion) +
-                                              "' (POV-Ray's dispersion model is not refract's)");
+            if (m.dispersion && m.dispersion->dispersive() && !m.dispersion->is_povray())
+                refuse(material_where(m), "dispersion '" + comment_text(m.dispersion->label) +
+                                              "' (POV-Ray's law is n·D^((555 − λ)/350): only the \"povray\" model exports)");
             if (m.reflectance == ReflectanceModel::Schlick)
                 refuse(material_where(m), "reflectance 'schlick' (POV-Ray has exact unpolarised Fresnel only)");
             if (m.reflectance == ReflectanceModel::FresnelS || m.reflectance == ReflectanceModel::FresnelP)
@@ -231,9 +239,17 @@ bool camera_inside(const Shape& shape, const Camera& cam) {
     return overlap(rect, *box);
 }
 
+bool same_dispersion(const Material& a, const Material& b) {
+    if (a.dispersion.has_value() != b.dispersion.has_value()) return false;
+    if (!a.dispersion) return true;
+    for (double l : {400.0, 550.0, 700.0})
+        if (a.dispersion->n(l) != b.dispersion->n(l)) return false;
+    return a.dispersion->label == b.dispersion->label;
+}
+
 bool same_optics(const Material& a, const Material& b) {
     return a.kind == b.kind && a.ior == b.ior && a.filter == b.filter && a.reflectance == b.reflectance &&
-           a.constant_reflectivity == b.constant_reflectivity && a.dispersion == b.dispersion;
+           a.constant_reflectivity == b.constant_reflectivity && same_dispersion(a, b);
 }
 
 // Groups of transparent objects exported as one POV-Ray object each (one interior):
@@ -334,7 +350,14 @@ std::string texture(const Material& m) {
     return t.str();
 }
 
-std::string interior(const Material& m) { return "interior { ior " + pov_number(m.ior) + " }"; }
+std::string interior(const Material& m) {
+    std::string s = "interior { ior " + pov_number(m.ior);
+    if (m.dispersion && m.dispersion->is_povray() && m.dispersion->dispersive()) {
+        const auto& p = std::get<spectrum::PovRayModel>(m.dispersion->model);
+        s += " dispersion " + pov_number(p.dispersion) + " dispersion_samples " + std::to_string(p.samples);
+    }
+    return s + " }";
+}
 
 std::string shape(const Shape& sh) {
     std::ostringstream o;

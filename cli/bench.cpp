@@ -1,0 +1,95 @@
+// refract bench: the Ohtsuka & Kawai 1998 diamond timed with refract and with POV-Ray 3.7
+// on the matching exported scene (docs/performance.md).
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "core/render.h"
+#include "experiments/common.h"
+#include "experiments/ohtsuka1998.h"
+#include "geometry/error.h"
+#include "validation/pov_export.h"
+#include "validation/povray_runner.h"
+
+namespace {
+
+struct Args {
+    int width = 640, height = 480, threads = 2, samples = 31;
+    std::uint64_t photons = 30000;
+    std::string povray = "povray";
+    double timeout = 900;
+    bool no_povray = false;
+};
+
+void line(const std::string& what, double seconds, const std::string& extra = "") {
+    std::cout << "  " << std::left << std::setw(52) << what << std::right << std::setw(10) << std::fixed
+              << std::setprecision(3) << seconds << " s" << extra << "\n";
+}
+
+refract::cli::Registrar reg{75, [](CLI::App& app) {
+    auto a = std::make_shared<Args>();
+    auto* sub = app.add_subcommand(
+        "bench", "Time the 1998 diamond (light + eye pass) and POV-Ray 3.7 on the matching scene, as ratios");
+    sub->add_option("--width", a->width, "Image width (640)");
+    sub->add_option("--height", a->height, "Image height (480)");
+    sub->add_option("--threads", a->threads, "Threads for refract and POV-Ray (+WT), 2");
+    sub->add_option("--samples", a->samples, "POV-Ray dispersion_samples (31 = 400-700 nm every 10 nm)");
+    sub->add_option("--photons", a->photons, "Light-pass photons (30000)");
+    sub->add_option("--povray", a->povray, "POV-Ray executable");
+    sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900)");
+    sub->add_flag("--no-povray", a->no_povray, "Time refract only");
+    sub->callback([a] {
+        using namespace refract;
+        namespace oh = experiments::ohtsuka1998;
+        if (a->width < 1 || a->height < 1 || a->width > 8192 || a->height > 8192)
+            throw InputError("bench: --width/--height must be in [1, 8192] (got " + std::to_string(a->width) + "×" +
+                             std::to_string(a->height) + ")");
+        if (a->threads < 1 || a->threads > 256)
+            throw InputError("bench: --threads must be in [1, 256] (got " + std::to_string(a->threads) + ")");
+        if (a->samples < 2 || a->samples > 1000)
+            throw InputError("bench: --samples must be in [2, 1000] (got " + std::to_string(a->samples) + ")");
+        oh::SceneParams p;
+        p.width = a->width;
+        p.height = a->height;
+        p.photons = a->photons;
+        RenderOptions opt;
+        opt.threads = a->threads;
+        std::cout << "Ohtsuka & Kawai 1998 diamond, " << p.width << "x" << p.height << ", " << a->threads
+                  << " threads\n";
+        // refract, physical: light pass + eye pass, full spectral split (31 wavelengths).
+        const Scene phys = experiments::scene_from_json(oh::scene_json(p), "bench scene");
+        const RenderResult full = render(phys, opt);
+        const double eye = full.stats.seconds - full.stats.light_seconds;
+        line("refract light pass (" + std::to_string(p.photons) + " photons)", full.stats.light_seconds);
+        line("refract eye pass (31 wavelengths, no shortcut)", eye);
+        line("refract light + eye pass", full.stats.seconds, full.stats.seconds < 10 ? "  (target < 10 s: met)"
+                                                                                      : "  (target < 10 s: missed)");
+        const double per_core = static_cast<double>(full.stats.segments) / eye / a->threads;
+        std::cout << "  eye-pass segments " << full.stats.segments << " (" << full.stats.wavelength_segments
+                  << " single-wavelength, inside/after the gem): " << std::scientific << std::setprecision(3)
+                  << per_core << " segments/s per core\n"
+                  << std::fixed;
+        // refract, POV-Ray compat mode with POV-Ray's law: the scene POV-Ray renders.
+        const nlohmann::json pj = oh::povray_scene_json(p, a->samples);
+        const Scene pov = experiments::scene_from_json(pj, "bench povray scene");
+        const RenderResult compat = render(pov, opt);
+        line("refract compat (POV-Ray law, " + std::to_string(a->samples) + " bands)", compat.stats.seconds);
+        if (a->no_povray) return;
+        validation::PovrayOptions po;
+        po.executable = a->povray;
+        po.threads = a->threads;
+        po.timeout_seconds = a->timeout;
+        try {
+            const auto pr = validation::render_povray(validation::export_pov(pov), p.width, p.height, po);
+            line(pr.version + " (dispersion_samples " + std::to_string(a->samples) + ", no photons)", pr.seconds);
+            std::cout << "  ratio POV-Ray / refract compat eye pass:   " << std::setprecision(2)
+                      << pr.seconds / compat.stats.seconds << "x (target >= 10x)\n"
+                      << "  ratio POV-Ray / refract physical eye pass: " << pr.seconds / eye << "x\n";
+        } catch (const validation::PovrayError& e) {
+            std::cout << "  POV-Ray not timed: " << e.what() << "\n";
+        }
+    });
+}};
+
+}  // namespace

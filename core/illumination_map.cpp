@@ -1,0 +1,84 @@
+#include "core/illumination_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refract {
+
+IlluminationMap IlluminationMap::for_plane(const Plane& p, const Vec3& centre, double half, double element_size) {
+    IlluminationMap m;
+    m.kind_ = Kind::Plane;
+    const Vec3 n = p.normal;
+    const Vec3 a = std::abs(n.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+    m.u_ = n.cross(a).normalized();
+    m.v_ = n.cross(m.u_);
+    m.cells_ = std::max(1, static_cast<int>(std::ceil(2.0 * half / element_size)));
+    m.size_ = element_size;
+    const Vec3 c = centre - (n.dot(centre) - p.offset) * n;  // projection onto the plane
+    const double h = 0.5 * m.cells_ * element_size;
+    m.origin_ = c - h * m.u_ - h * m.v_;
+    m.area_.assign(static_cast<size_t>(m.cells_) * m.cells_, element_size * element_size);
+    m.irradiance.assign(m.area_.size(), Vec3(0, 0, 0));
+    return m;
+}
+
+IlluminationMap IlluminationMap::for_mesh(const TriangleMesh& mesh, double element_size) {
+    IlluminationMap m;
+    m.kind_ = Kind::Mesh;
+    m.mesh_ = &mesh;
+    int total = 0;
+    for (const auto& t : mesh.triangles) {
+        const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+        const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+        const int k = std::max(1, static_cast<int>(std::ceil(edge / element_size)));
+        const double area = 0.5 * (b - a).cross(c - a).norm() / (static_cast<double>(k) * k);
+        m.k_.push_back(k);
+        m.first_.push_back(total);
+        total += k * k;
+        m.area_.insert(m.area_.end(), static_cast<size_t>(k) * k, area);
+    }
+    m.irradiance.assign(m.area_.size(), Vec3(0, 0, 0));
+    return m;
+}
+
+int IlluminationMap::element(const Hit& hit) const {
+    if (kind_ == Kind::Plane) {
+        const Vec3 d = hit.point - origin_;
+        const double x = d.dot(u_) / size_, y = d.dot(v_) / size_;
+        if (!(x >= 0 && y >= 0 && x < cells_ && y < cells_)) return -1;
+        return static_cast<int>(y) * cells_ + static_cast<int>(x);
+    }
+    if (hit.facet < 0 || hit.facet >= static_cast<int>(k_.size())) return -1;
+    const auto& t = mesh_->triangles[static_cast<size_t>(hit.facet)];
+    const Vec3 &a = mesh_->vertices[t[0]], &b = mesh_->vertices[t[1]], &c = mesh_->vertices[t[2]];
+    // Barycentric (s, t) of the hit: p = a + s(b − a) + t(c − a).
+    const Vec3 e1 = b - a, e2 = c - a, w = hit.point - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), w1 = w.dot(e1), w2 = w.dot(e2);
+    const double den = d11 * d22 - d12 * d12;
+    const int k = k_[static_cast<size_t>(hit.facet)];
+    const double s = std::clamp((d22 * w1 - d12 * w2) / den, 0.0, 1.0) * k;
+    const double r = std::clamp((d11 * w2 - d12 * w1) / den, 0.0, 1.0) * k;
+    const int i = std::min(k - 1, static_cast<int>(s)), j = std::min(k - 1, static_cast<int>(r));
+    // Cell (i, j) of the k×k grid in (s, t) holds a lower and an upper triangle; cells
+    // with i + j = k − 1 have only the lower one. Row j has 2(k − j) − 1 triangles.
+    const bool upper = (s - i) + (r - j) > 1.0 && i + j < k - 1;
+    const int row_start = j * (2 * k - j);  // Σ_{q<j} (2(k − q) − 1)
+    return first_[static_cast<size_t>(hit.facet)] + row_start + 2 * i + (upper ? 1 : 0);
+}
+
+Vec3 IlluminationMaps::irradiance(int object, const Hit& hit) const {
+    if (object < 0 || object >= static_cast<int>(by_object.size()) || !by_object[static_cast<size_t>(object)])
+        return Vec3(0, 0, 0);
+    const IlluminationMap& m = *by_object[static_cast<size_t>(object)];
+    const int e = m.element(hit);
+    return e < 0 ? Vec3(0, 0, 0) : m.irradiance[static_cast<size_t>(e)];
+}
+
+size_t IlluminationMaps::elements() const {
+    size_t n = 0;
+    for (const auto& m : by_object)
+        if (m) n += static_cast<size_t>(m->elements());
+    return n;
+}
+
+}  // namespace refract

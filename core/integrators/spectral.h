@@ -1,0 +1,52 @@
+#pragma once
+// Spectral eye pass (Ohtsuka & Kawai 1998, §3.2–3.3). A ray is one RGB ray until its
+// first hit on a dispersive dielectric; there it splits into one ray per sampled
+// wavelength, each refracted with that wavelength's index, and every wavelength is then
+// traced alone (the Fresnel-tree walk of Yasuda 1984 with the branch's own index), with
+// at most `max_reflections` reflections and `max_transmissions` transmissions per path
+// besides the cumulative-attenuation threshold. Wavelength i's RGB result is weighted by
+// the colour converter's weight(i) (core/spectrum/cie.h, white balanced so the weights
+// sum to (1, 1, 1)) and summed; the pixel is finished (clipped for cie-rgb) at the end.
+//
+// The shortcut (§3.3): first only three wavelengths (610/545/445 nm); when their
+// contributions lie within `shortcut_threshold` of each other in RGB, their mean stands
+// for the split and the full split is skipped.
+//
+// POV-Ray compat mode: the split happens at the first refraction only (the reflected ray
+// stays RGB, Fresnel with the nominal index); bands and colours are POV-Ray's
+// (dispersion_samples, hue table) when a material uses the "povray" model.
+#include <memory>
+#include <vector>
+
+#include "core/tracer.h"
+
+namespace refract {
+
+struct IlluminationMaps;
+
+struct SpectralContext {
+    std::vector<double> wavelengths;        // the bands, nm
+    std::vector<Vec3> weights;              // RGB weight of each band; they sum to (1, 1, 1)
+    // index[b][material]: the material's index at band b (0: not dispersive, use `ior`);
+    // bands 0..n−1 are `wavelengths`, n..n+2 the shortcut wavelengths.
+    std::vector<std::vector<double>> index;
+    std::vector<char> dispersive;           // per material: splits a ray
+    bool pov = false;                       // POV-Ray compat semantics
+    bool clip = true;                       // cie-rgb: clip negatives at the end
+    bool shortcut = false;
+    double shortcut_threshold = 0.01;
+    int max_reflections = 8, max_transmissions = 8;
+    const IlluminationMaps* maps = nullptr; // light pass result, read at diffuse hits
+
+    size_t bands() const { return wavelengths.size(); }
+    Vec3 finish(const Vec3& rgb) const;
+
+    // Throws InputError when the spectral settings are invalid.
+    static SpectralContext build(const Scene& scene);
+};
+
+// Radiance (RGB, not yet finished) along a primary ray.
+Vec3 spectral_radiance(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
+                       RenderStats& stats);
+
+}  // namespace refract

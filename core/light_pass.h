@@ -1,0 +1,34 @@
+#pragma once
+// Light pass of bidirectional ray tracing (Chattopadhyay & Fujimoto 1987, as Ohtsuka &
+// Kawai 1998 use it). From each point light, photons are shot into the cone around each
+// transparent object's bounding sphere (uniform in solid angle); a photon is one RGB ray
+// until its first hit on a dispersive dielectric, where it splits into one ray per band
+// carrying the band's RGB weight; each is traced with its own index through reflections
+// and refractions (both branches, Fresnel-weighted, the paper's 8/8 limits and the
+// threshold), and what reaches a diffuse surface after at least one specular interaction
+// is deposited in that surface's illumination map (core/illumination_map.h).
+//
+// Units: a point light of colour c is given the intensity c·d² (d: distance to the
+// transparent objects' centre), so that without the objects the map would hold the
+// direct irradiance c·cosθ of the POV-Ray convention (no falloff) at that distance.
+// Deterministic for any thread count: photon p draws from its own stream
+// Rng(seed, light·objects + object, p), and deposits are summed in 64-bit fixed point.
+#include <memory>
+
+#include "core/illumination_map.h"
+#include "core/integrators/spectral.h"
+
+namespace refract {
+
+// Bounding sphere (centre, radius) of a bounded shape; nullopt for planes and unbounded
+// polyhedra.
+struct BoundingSphere {
+    Vec3 centre;
+    double radius;
+};
+std::optional<BoundingSphere> bounding_sphere(const Shape& shape);
+
+// Runs the light pass with scene.settings.light_pass on `threads` threads (0: all).
+std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads = 0);
+
+}  // namespace refract

@@ -1,0 +1,98 @@
+// Bad scene input: one clear message naming the file and the JSON path, never a crash.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "core/render.h"
+#include "core/scene_json.h"
+#include "geometry/error.h"
+
+using namespace refract;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const char* kGood = R"({
+  "camera": {"location": [0, 0, -4], "look_at": [0, 0, 0], "angle": 40, "width": 8, "height": 6},
+  "materials": {"glass": {"type": "dielectric", "ior": 1.5}},
+  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass"}]
+})";
+
+std::string error_of(const std::string& text) {
+    try {
+        parse_scene(nlohmann::json::parse(text), "s.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string with(const std::string& from, const std::string& to) {
+    std::string s = kGood;
+    const auto pos = s.find(from);
+    REQUIRE(pos != std::string::npos);
+    return s.replace(pos, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("A valid scene file parses into the scene it describes", "[scene]") {
+    const Scene s = parse_scene(nlohmann::json::parse(kGood), "s.json");
+    CHECK(s.camera.width == 8);
+    CHECK(s.objects.size() == 1);
+    CHECK(s.materials.at(0).ior == 1.5);
+    CHECK(std::get<Sphere>(s.objects[0].shape).radius == 1.0);
+}
+
+TEST_CASE("Bad scene input names the file and the JSON path", "[scene][errors]") {
+    CHECK_THAT(error_of(with("\"radius\": 1", "\"raduis\": 1")), Contains("s.json: /objects/0/raduis: unknown field"));
+    CHECK_THAT(error_of(with("\"ior\": 1.5", "\"ior\": 0")), Contains("s.json: /materials/glass/ior: must be > 0"));
+    CHECK_THAT(error_of(with("\"ior\": 1.5", "\"ior\": -2")), Contains("/materials/glass/ior"));
+    nlohmann::json huge = nlohmann::json::parse(kGood);
+    huge["objects"][0]["radius"] = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH(parse_scene(huge, "s.json"), Contains("s.json: /objects/0/radius: must be a finite number"));
+    CHECK_THAT(error_of(with("\"width\": 8", "\"width\": 0")), Contains("/camera/width: must be in"));
+    CHECK_THAT(error_of(with("\"type\": \"dielectric\"", "\"type\": \"glassy\"")),
+               Contains("/materials/glass/type: unknown material type 'glassy'"));
+    CHECK_THAT(error_of(with("\"material\": \"glass\"", "\"material\": \"gold\"")),
+               Contains("/objects/0/material: unknown material 'gold'"));
+    CHECK_THAT(error_of(with("\"center\": [0, 0, 0]", "\"center\": [0, \"a\", 0]")),
+               Contains("/objects/0/center/1: must be a number"));
+    CHECK_THAT(error_of(with("\"type\": \"sphere\"", "\"type\": \"torus\"")),
+               Contains("/objects/0/type: unknown object type 'torus'"));
+}
+
+TEST_CASE("Missing and malformed scene files are refused with the file name", "[scene][errors]") {
+    CHECK_THROWS_WITH(load_scene("no-such-scene.json"), Contains("no-such-scene.json: cannot open"));
+    const auto path = std::filesystem::temp_directory_path() / "refract-malformed-scene.json";
+    {
+        std::ofstream f(path);
+        f << "{\"camera\": {\"width\": NaN}}";
+    }
+    CHECK_THROWS_WITH(load_scene(path.string()), Contains("malformed JSON"));
+    {
+        std::ofstream f(path);
+        f << "{\"camera\": {\"width\": 1e999}}";
+    }
+    CHECK_THROWS_WITH(load_scene(path.string()), Contains("malformed JSON: number overflow"));
+    std::filesystem::remove(path);
+}
+
+TEST_CASE("A failed image write leaves no file behind", "[image][errors]") {
+    Image img(4, 3);
+    const auto dir = std::filesystem::temp_directory_path() / "refract-image-test";
+    std::filesystem::create_directories(dir);
+    CHECK_THROWS_AS(write_image((dir / "x.unknownext").string(), img), InputError);
+    CHECK_THROWS_AS(write_image((dir / "missing-dir" / "x.png").string(), img), InputError);
+    write_image((dir / "ok.exr").string(), img);
+    int files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+    CHECK(files == 1);  // only ok.exr: no temporary left over
+    const Image back = read_image((dir / "ok.exr").string());
+    CHECK(back.width == 4);
+    CHECK(back.height == 3);
+    std::filesystem::remove_all(dir);
+}
