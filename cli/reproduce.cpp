@@ -13,11 +13,13 @@
 #include "experiments/experiment.h"
 #include "experiments/plot.h"
 #include "geometry/error.h"
+#include "validation/files.h"
 #include "validation/suite.h"
 
 namespace {
 namespace fs = std::filesystem;
 namespace ex = refract::experiments;
+using refract::validation::html_escape;
 
 struct Args {
     std::string out = "out";
@@ -26,20 +28,6 @@ struct Args {
     bool quick = false;
     bool skip_validation = false;
 };
-
-std::string html_escape(const std::string& s) {
-    std::string o;
-    for (char c : s) {
-        switch (c) {
-            case '&': o += "&amp;"; break;
-            case '<': o += "&lt;"; break;
-            case '>': o += "&gt;"; break;
-            case '"': o += "&quot;"; break;
-            default: o += c;
-        }
-    }
-    return o;
-}
 
 // Files of one kind in DIR, sorted by name.
 std::vector<std::string> files_with(const fs::path& dir, const std::string& ext) {

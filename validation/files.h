@@ -12,4 +12,7 @@ void write_text_file(const std::string& path, const std::string& text);
 // Reads a whole text file; throws InputError naming the path when it cannot be read.
 std::string read_text_file(const std::string& path);
 
+// Escapes &, <, > and " for HTML text and attribute values.
+std::string html_escape(const std::string& s);
+
 }  // namespace refract::validation

@@ -20,20 +20,6 @@ std::string fmt(double v, bool percent) {
 
 std::string tolerance_text(const Metric& m) { return m.tolerance ? "<= " + fmt(*m.tolerance, m.percent) : "-"; }
 
-std::string html_escape(const std::string& s) {
-    std::string o;
-    for (char c : s) {
-        switch (c) {
-            case '&': o += "&amp;"; break;
-            case '<': o += "&lt;"; break;
-            case '>': o += "&gt;"; break;
-            case '"': o += "&quot;"; break;
-            default: o += c;
-        }
-    }
-    return o;
-}
-
 std::string md_escape(const std::string& s) {
     std::string o;
     for (char c : s) {
