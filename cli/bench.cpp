@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "core/render.h"
@@ -20,6 +21,7 @@ struct Args {
     std::string povray = "povray";
     double timeout = 900;
     bool no_povray = false;
+    bool no_photons = false;
 };
 
 void line(const std::string& what, double seconds, const std::string& extra = "") {
@@ -39,6 +41,7 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--povray", a->povray, "POV-Ray executable");
     sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900)");
     sub->add_flag("--no-povray", a->no_povray, "Time refract only");
+    sub->add_flag("--no-photons", a->no_photons, "Skip the light pass against POV-Ray photons");
     sub->callback([a] {
         using namespace refract;
         namespace oh = experiments::ohtsuka1998;
@@ -75,6 +78,16 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
         const Scene pov = experiments::scene_from_json(pj, "bench povray scene");
         const RenderResult compat = render(pov, opt);
         line("refract compat (POV-Ray law, " + std::to_string(a->samples) + " bands)", compat.stats.seconds);
+        // The same with a light pass: what POV-Ray renders with photons (statistically).
+        nlohmann::json pjl = pj;
+        pjl["render"]["light_pass"] = {{"photons", p.photons}, {"element_size", p.element_size}, {"region", 3}, {"seed", 7}};
+        const Scene pov_light = experiments::scene_from_json(pjl, "bench povray scene with light pass");
+        std::optional<RenderResult> compat_light;
+        if (!a->no_photons) {
+            compat_light = render(pov_light, opt);
+            line("refract compat light + eye pass (" + std::to_string(p.photons) + " photons)",
+                 compat_light->stats.seconds);
+        }
         if (a->no_povray) return;
         validation::PovrayOptions po;
         po.executable = a->povray;
@@ -88,6 +101,20 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
                       << "  ratio POV-Ray / refract physical eye pass: " << pr.seconds / eye << "x\n";
         } catch (const validation::PovrayError& e) {
             std::cout << "  POV-Ray not timed: " << e.what() << "\n";
+        }
+        if (a->no_photons) return;
+        try {
+            validation::ExportOptions eo;
+            eo.photons = true;  // photons { count N } and the gem as photon target
+            eo.photon_count = p.photons;
+            const auto pr = validation::render_povray(validation::export_pov(pov_light, eo), p.width, p.height, po);
+            line(pr.version + " (same, photons count " + std::to_string(p.photons) + ")", pr.seconds);
+            std::cout << "  ratio POV-Ray photons / refract compat light + eye pass:   " << std::setprecision(2)
+                      << pr.seconds / compat_light->stats.seconds << "x (target >= 10x)\n"
+                      << "  ratio POV-Ray photons / refract physical light + eye pass: "
+                      << pr.seconds / full.stats.seconds << "x\n";
+        } catch (const validation::PovrayError& e) {
+            std::cout << "  POV-Ray with photons not timed: " << e.what() << "\n";
         }
     });
 }};

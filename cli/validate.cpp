@@ -2,10 +2,12 @@
 // Exit status: 0 every case passed, 1 some case failed, 3 none failed but some were
 // skipped (not validated), 2 bad input.
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "geometry/error.h"
+#include "validation/caustics.h"
 #include "validation/suite.h"
 
 namespace {
@@ -17,6 +19,7 @@ struct ValidateArgs {
     std::string povray = "povray";
     int threads = 0;
     bool list = false;
+    bool caustics = false;
 };
 
 refract::cli::Registrar reg{60, [](CLI::App& app) {
@@ -29,10 +32,43 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores for refract, 2 for POV-Ray)");
     sub->add_option("--povray", args->povray, "POV-Ray executable (name on PATH or path)");
     sub->add_flag("--list", args->list, "List the cases and exit");
+    sub->add_flag("--caustics", args->caustics,
+                  "Only the caustic comparison: refract light pass vs POV-Ray photons, region means and a profile");
     sub->callback([args] {
         namespace v = refract::validation;
         if (args->list) {
             for (const auto& n : v::list_cases(args->scenes)) std::cout << n << "\n";
+            return;
+        }
+        if (args->caustics) {
+            if (args->threads < 0) throw refract::InputError("validate: --threads must be >= 0");
+            v::CausticOptions co;
+            co.threads = args->threads;
+            co.povray.executable = args->povray;
+            if (args->threads > 0) co.povray.threads = args->threads;
+            v::SuiteResult r;
+            try {
+                r.cases.push_back(v::run_caustics(co));
+            } catch (const v::PovrayError& e) {
+                v::CaseResult c;
+                c.name = "caustic-statistics";
+                c.skip_reason = e.what();
+                r.cases.push_back(c);
+            }
+            const v::Status st = r.cases[0].status;
+            r.passed = st == v::Status::Pass;
+            r.failed = st == v::Status::Fail;
+            r.skipped = st == v::Status::Skip;
+            std::cout << v::format_table(r);
+            if (!args->out_dir.empty()) {
+                std::error_code ec;
+                std::filesystem::create_directories(args->out_dir, ec);
+                if (ec) throw refract::InputError("validate: -o " + args->out_dir + ": cannot create directory (" + ec.message() + ")");
+                v::write_reports(r, args->out_dir);
+                std::cout << "reports: " << args->out_dir << "/report.md, " << args->out_dir << "/report.html" << std::endl;
+            }
+            if (r.failed > 0) std::exit(1);
+            if (r.skipped > 0) std::exit(3);
             return;
         }
         if (args->out_dir.empty()) throw refract::InputError("validate: -o DIR (report directory) is required");

@@ -68,6 +68,7 @@ struct Photon {
     int band;  // −1: RGB, before the first dispersive hit
     int depth, refl, trans;
     bool specular;  // has met a specular surface
+    double travelled;  // path length from the light to the ray's origin
 };
 
 constexpr double kFixedScale = 1099511627776.0;  // 2^40 units per unit of scaled power
@@ -115,8 +116,8 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
 
     // Emitters: (light, target) pairs, photons split evenly over the targets.
     struct Emitter {
-        Vec3 origin, axis, power;  // power: flux of one photon
-        double cos_max;
+        Vec3 origin, axis, power;  // power: flux of one photon at the reference distance
+        double cos_max, dref;
         std::uint64_t photons, stream;
     };
     std::vector<Emitter> emitters;
@@ -133,7 +134,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
             const double omega = 2.0 * M_PI * (1.0 - cos_max);
             const std::uint64_t n = std::max<std::uint64_t>(1, lp.photons / targets.size());
             const Vec3 power = L.color * (dref * dref * omega / static_cast<double>(n));
-            emitters.push_back({L.position, to / d, power, cos_max, n, l * targets.size() + t});
+            emitters.push_back({L.position, to / d, power, cos_max, dref, n, l * targets.size() + t});
             max_power = std::fmax(max_power, power.cwiseAbs().maxCoeff() * static_cast<double>(n));
         }
     }
@@ -151,7 +152,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
         const Vec3 dir = (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized();
         std::deque<Photon> list;
-        list.push_back({Ray{em.origin, dir}, em.power, 1.0, -1, 0, 0, 0, false});
+        list.push_back({Ray{em.origin, dir}, em.power, 1.0, -1, 0, 0, 0, false, 0.0});
         while (!list.empty()) {
             const Photon ph = list.front();
             list.pop_front();
@@ -165,9 +166,16 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
                 const int e = maps->by_object[obj]->element(hit->hit);
                 if (e < 0) continue;
                 // Irradiance counts the power arriving on the surface, whatever the angle.
+                // Point lights have no distance falloff (POV-Ray's default, and refract's
+                // direct lighting): a photon's power grows with the square of the path
+                // length, so that light passing through an index-1 object lands exactly
+                // as the direct light would.
+                const double D = ph.travelled + hit->hit.t;
+                const double falloff = (D * D) / (em.dref * em.dref);
                 for (int c = 0; c < 3; ++c)
                     acc.sums[obj][3 * static_cast<size_t>(e) + c].fetch_add(
-                        static_cast<std::int64_t>(std::llround(ph.power[c] * acc.scale)), std::memory_order_relaxed);
+                        static_cast<std::int64_t>(std::llround(ph.power[c] * falloff * acc.scale)),
+                        std::memory_order_relaxed);
                 ++dep;
                 continue;
             }
@@ -182,7 +190,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
                     if (ph.depth + 1 > rs.max_depth || refl > ctx.max_reflections || trans > ctx.max_transmissions)
                         continue;
                     list.push_back({br.ray, ph.power.cwiseProduct(br.factor).cwiseProduct(tint), bail, band,
-                                    ph.depth + 1, refl, trans, true});
+                                    ph.depth + 1, refl, trans, true, ph.travelled + hit->hit.t});
                 }
             };
             if (ph.band < 0 && ctx.dispersive[static_cast<size_t>(mi)]) {

@@ -8,9 +8,9 @@
 // threshold), and what reaches a diffuse surface after at least one specular interaction
 // is deposited in that surface's illumination map (core/illumination_map.h).
 //
-// Units: a point light of colour c is given the intensity c·d² (d: distance to the
-// transparent objects' centre), so that without the objects the map would hold the
-// direct irradiance c·cosθ of the POV-Ray convention (no falloff) at that distance.
+// Units: point lights have no falloff (the POV-Ray convention of the direct lighting):
+// a photon's power is scaled by the square of the path length it travelled, so that
+// light crossing an index-1 object lands as the direct irradiance c·cosθ would.
 // Deterministic for any thread count: photon p draws from its own stream
 // Rng(seed, light·objects + object, p), and deposits are summed in 64-bit fixed point.
 #include <memory>

@@ -55,14 +55,14 @@ private:
 std::string material_where(const Material& m) { return "material '" + comment_text(m.name) + "'"; }
 std::string object_where(const Object& o) { return "object '" + comment_text(o.name) + "'"; }
 
-void check_settings(const Scene& s, const Refuser& refuse) {
+void check_settings(const Scene& s, const Refuser& refuse, bool photons) {
     const RenderSettings& r = s.settings;
     if (r.integrator == IntegratorKind::Stochastic)
         refuse("/render/integrator", "the stochastic integrator (RTIOW path sampling) has no POV-Ray equivalent");
     if (r.samples > 1 && r.jitter)
         refuse("/render/jitter", "jittered supersampling (" + std::to_string(r.samples) +
                                      " samples) differs from POV-Ray's antialiasing");
-    if (r.light_pass.enabled)
+    if (r.light_pass.enabled && !photons)
         refuse("/render/light_pass", "the light pass (illumination maps) has no exact POV-Ray counterpart (photons are statistical)");
     if (r.spectral.enabled &&
         (r.spectral.max_reflections < r.max_depth || r.spectral.max_transmissions < r.max_depth))
@@ -408,9 +408,11 @@ std::string background(const Background& b) {
 
 }  // namespace
 
-std::string export_pov(const Scene& s) {
+std::string export_pov(const Scene& s) { return export_pov(s, ExportOptions{}); }
+
+std::string export_pov(const Scene& s, const ExportOptions& opt) {
     const Refuser refuse(s);
-    check_settings(s, refuse);
+    check_settings(s, refuse, opt.photons);
     for (const Material& m : s.materials) check_material(m, refuse);
     const auto groups = dielectric_groups(s, refuse);
 
@@ -420,7 +422,12 @@ std::string export_pov(const Scene& s) {
       << "; renders what refract renders with \"compat\": \"povray\".\n";
     const bool whitted = s.settings.integrator == IntegratorKind::Whitted;
     o << "global_settings {\n  assumed_gamma 1.0\n  max_trace_level " << s.settings.max_depth + 1
-      << "\n  adc_bailout " << pov_number(whitted ? 0.0 : s.settings.threshold) << "\n}\n";
+      << "\n  adc_bailout " << pov_number(whitted ? 0.0 : s.settings.threshold);
+    if (opt.photons) {
+        const std::uint64_t n = opt.photon_count ? opt.photon_count : s.settings.light_pass.photons;
+        o << "\n  photons { count " << n << " }";
+    }
+    o << "\n}\n";
     o << camera(s.camera);
     o << background(s.background);
     for (const PointLight& l : s.lights) o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
@@ -438,18 +445,19 @@ std::string export_pov(const Scene& s) {
         if (m.kind == MaterialKind::Emissive) o << " no_shadow";  // a highlight sphere, not an occluder
         o << " }\n";
     }
+    const std::string target = opt.photons ? " photons { target refraction on reflection on }" : "";
     for (const auto& g : groups) {
         const Material& m = s.materials[s.objects[g[0]].material];
         o << "// " << comment_text(s.objects[g[0]].name) << " (" << comment_text(m.name) << ")";
         if (g.size() == 1) {
-            o << "\n" << shape(s.objects[g[0]].shape) << " " << texture(m) << " " << interior(m) << " }\n";
+            o << "\n" << shape(s.objects[g[0]].shape) << " " << texture(m) << " " << interior(m) << target << " }\n";
             continue;
         }
         o << " hollowed by";
         for (size_t i = 1; i < g.size(); ++i) o << " " << comment_text(s.objects[g[i]].name);
         o << "\nunion {\n";  // one interior for all the surfaces of the hollow solid
         for (size_t i : g) o << "  " << shape(s.objects[i].shape) << " }\n";
-        o << "  " << texture(m) << "\n  " << interior(m) << "\n}\n";
+        o << "  " << texture(m) << "\n  " << interior(m) << target << "\n}\n";
     }
     return o.str();
 }

@@ -4,6 +4,7 @@
 // or refused: every statement reproduces refract's POV-Ray-compatible mode
 // ("compat": "povray"), and a scene feature POV-Ray cannot express the same way throws
 // InputError naming the feature, never an approximate file.
+#include <cstdint>
 #include <string>
 
 #include "core/scene.h"
@@ -18,6 +19,19 @@ namespace refract::validation {
 // leaving by the objects a ray is inside, refract by the surface normal; the two agree
 // only for disjoint solids), open meshes made of glass.
 std::string export_pov(const Scene& scene);
+
+// Opt-in statistical export (docs/validation.md, "Caustics"): with `photons`, a scene
+// with a light pass is accepted and exported with POV-Ray photons instead: `photons {
+// count N }` in global_settings (N = photon_count, or the scene's light_pass.photons
+// when 0) and `photons { target refraction on reflection on }` on every transparent
+// object. POV-Ray then blocks the straight light through those objects (the caustic
+// replaces it), as refract's physical shadow rays do. Photons are jittered: compare such
+// renders statistically, never per pixel. With photons off the output is export_pov's.
+struct ExportOptions {
+    bool photons = false;
+    std::uint64_t photon_count = 0;
+};
+std::string export_pov(const Scene& scene, const ExportOptions& options);
 
 // export_pov written to `path` through a temporary name and a rename.
 void write_pov(const Scene& scene, const std::string& path);
