@@ -1,6 +1,7 @@
 #pragma once
 // Bad input is reported by throwing InputError with one line that names the file, field
 // or parameter; the command line turns it into that line on stderr and exit code 2.
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -9,5 +10,12 @@ namespace refract {
 struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+// A number as an error message shows it (up to 10 significant digits).
+inline std::string format_value(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+}
 
 }  // namespace refract

@@ -15,12 +15,6 @@ namespace refract::spectrum {
 
 namespace {
 
-std::string num(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    return buf;
-}
-
 // POV-Ray 3.7's cumulative hue table, "SpectralHueIntegral" Variant 3 (the one compiled in),
 // 375–740 nm every 5 nm: the integral of its fitted band-colour spectrum. Numeric data from
 // POV-Ray 3.7.0.10, source/backend/colour/spectral.cpp (POV-Ray's data; the code is ours).
@@ -327,8 +321,8 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
     if (model == "constant") {
         only_keys(o, {"model", "n"}, path);
         const double n = number(o, "n", path);
-        if (!(n > 0.0)) throw InputError(path + "/n: " + num(n) + " must be > 0");
-        return {ConstantIndex{n}, "constant n = " + num(n)};
+        if (!(n > 0.0)) throw InputError(path + "/n: " + format_value(n) + " must be > 0");
+        return {ConstantIndex{n}, "constant n = " + format_value(n)};
     }
     if (model == "cauchy") {
         only_keys(o, {"model", "A", "B", "C"}, path);
@@ -348,9 +342,9 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
     if (model == "abbe") {
         only_keys(o, {"model", "nd", "Vd"}, path);
         const double nd = number(o, "nd", path), Vd = number(o, "Vd", path);
-        if (!(nd > 1.0)) throw InputError(path + "/nd: " + num(nd) + " must be > 1");
-        if (!(Vd > 0.0)) throw InputError(path + "/Vd: " + num(Vd) + " must be > 0");
-        return {abbe_model(nd, Vd), "abbe n_d = " + num(nd) + ", V_d = " + num(Vd)};
+        if (!(nd > 1.0)) throw InputError(path + "/nd: " + format_value(nd) + " must be > 1");
+        if (!(Vd > 0.0)) throw InputError(path + "/Vd: " + format_value(Vd) + " must be > 0");
+        return {abbe_model(nd, Vd), "abbe n_d = " + format_value(nd) + ", V_d = " + format_value(Vd)};
     }
     if (model == "moissanite-form") {
         only_keys(o, {"model", "A", "B", "C", "D"}, path);
@@ -364,13 +358,13 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
         m.ior = number(o, "ior", path);
         m.dispersion = number_or(o, "dispersion", 1.0, path);
         const double s = number_or(o, "samples", 7.0, path);
-        if (!(m.ior > 0.0)) throw InputError(path + "/ior: " + num(m.ior) + " must be > 0");
+        if (!(m.ior > 0.0)) throw InputError(path + "/ior: " + format_value(m.ior) + " must be > 0");
         if (!(m.dispersion > 0.0))
-            throw InputError(path + "/dispersion: " + num(m.dispersion) + " must be > 0");
+            throw InputError(path + "/dispersion: " + format_value(m.dispersion) + " must be > 0");
         if (s != std::floor(s) || s < 2 || s > 1000)
-            throw InputError(path + "/samples: " + num(s) + " must be an integer in [2, 1000]");
+            throw InputError(path + "/samples: " + format_value(s) + " must be an integer in [2, 1000]");
         m.samples = static_cast<int>(s);
-        return {m, "povray ior " + num(m.ior) + " dispersion " + num(m.dispersion)};
+        return {m, "povray ior " + format_value(m.ior) + " dispersion " + format_value(m.dispersion)};
     }
     throw InputError(path + "/model: unknown model \"" + model + "\"; allowed: constant, cauchy, "
                      "sellmeier, abbe, moissanite-form, povray");
@@ -381,7 +375,7 @@ void check_range(const Dispersion& d, const std::string& path) {
         const double n = d.n(l);
         if (!std::isfinite(n) || !(n > 0.0))
             throw InputError(path + ": the model gives " +
-                             (std::isnan(n) ? std::string("n² < 0") : "n = " + num(n)) + " at " +
+                             (std::isnan(n) ? std::string("n² < 0") : "n = " + format_value(n)) + " at " +
                              std::to_string(l) + " nm; it must be finite and > 0 over 360–830 nm");
     }
 }
@@ -401,7 +395,7 @@ Dispersion parse_dispersion(const nlohmann::json& j, const std::string& path) {
         const double n = j.get<double>();
         if (!std::isfinite(n) || !(n > 0.0))
             throw InputError(path + ": index " + j.dump() + " must be finite and > 0");
-        d = {ConstantIndex{n}, "constant n = " + num(n)};
+        d = {ConstantIndex{n}, "constant n = " + format_value(n)};
     } else if (j.is_object()) {
         d = parse_model(j, path);
     } else {

@@ -14,12 +14,6 @@ namespace refract::spectrum {
 
 namespace {
 
-std::string num(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    return buf;
-}
-
 // CIE standard illuminant D65, relative spectral power, 300–830 nm every 5 nm (107 values),
 // normalised to 1.0 at 560 nm. Source: CIE 15:2004 "Colorimetry", table T.1 (values / 100),
 // as distributed in colord's data files (illuminant/CIE-D65.sp, colord-data 1.4.6).
@@ -46,18 +40,18 @@ constexpr std::array<double, 107> kD65 = {
 
 void validate(const WavelengthSampling& s, const std::string& where) {
     if (!std::isfinite(s.min_nm) || s.min_nm < kMinWavelength || s.min_nm > kMaxWavelength)
-        throw InputError(where + "/min: " + num(s.min_nm) + " nm is outside the allowed range [" +
-                         num(kMinWavelength) + ", " + num(kMaxWavelength) + "] nm");
+        throw InputError(where + "/min: " + format_value(s.min_nm) + " nm is outside the allowed range [" +
+                         format_value(kMinWavelength) + ", " + format_value(kMaxWavelength) + "] nm");
     if (!std::isfinite(s.max_nm) || s.max_nm < s.min_nm || s.max_nm > kMaxWavelength)
-        throw InputError(where + "/max: " + num(s.max_nm) + " nm is outside the allowed range [" +
-                         num(s.min_nm) + " (min), " + num(kMaxWavelength) + "] nm");
+        throw InputError(where + "/max: " + format_value(s.max_nm) + " nm is outside the allowed range [" +
+                         format_value(s.min_nm) + " (min), " + format_value(kMaxWavelength) + "] nm");
     if (!std::isfinite(s.step_nm) || s.step_nm < 0.1 || s.step_nm > kMaxWavelength - kMinWavelength)
-        throw InputError(where + "/step: " + num(s.step_nm) +
+        throw InputError(where + "/step: " + format_value(s.step_nm) +
                          " nm is outside the allowed range [0.1, 470] nm");
     const double steps = (s.max_nm - s.min_nm) / s.step_nm;
     if (std::abs(steps - std::round(steps)) > 1e-9 * std::max(1.0, steps))
-        throw InputError(where + "/step: " + num(s.step_nm) + " nm does not divide the range " +
-                         num(s.min_nm) + "–" + num(s.max_nm) + " nm into whole steps");
+        throw InputError(where + "/step: " + format_value(s.step_nm) + " nm does not divide the range " +
+                         format_value(s.min_nm) + "–" + format_value(s.max_nm) + " nm into whole steps");
 }
 
 std::vector<double> sample_wavelengths(const WavelengthSampling& s, const std::string& where) {
@@ -75,7 +69,7 @@ std::vector<double> band_widths(const std::vector<double>& wl) {
     for (size_t i = 1; i < n; ++i)
         if (!(wl[i] > wl[i - 1]))
             throw InputError("wavelengths: not strictly increasing at index " + std::to_string(i) +
-                             " (" + num(wl[i - 1]) + " then " + num(wl[i]) + " nm)");
+                             " (" + format_value(wl[i - 1]) + " then " + format_value(wl[i]) + " nm)");
     std::vector<double> d(n, 1.0);
     if (n == 1) return d;
     for (size_t i = 0; i < n; ++i) {
@@ -128,14 +122,14 @@ std::string LightSpectrum::name() const {
     switch (kind) {
         case Illuminant::EqualEnergy: return "equal-energy";
         case Illuminant::D65: return "D65";
-        case Illuminant::Blackbody: return "blackbody " + num(temperature_K) + " K";
+        case Illuminant::Blackbody: return "blackbody " + format_value(temperature_K) + " K";
     }
     return "?";
 }
 
 LightSpectrum blackbody(double T, const std::string& where) {
     if (!std::isfinite(T) || T < 100.0 || T > 100000.0)
-        throw InputError(where + ": " + num(T) + " K is outside the allowed range [100, 100000] K");
+        throw InputError(where + ": " + format_value(T) + " K is outside the allowed range [100, 100000] K");
     LightSpectrum s;
     s.kind = Illuminant::Blackbody;
     s.temperature_K = T;

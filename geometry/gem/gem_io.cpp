@@ -44,18 +44,23 @@ std::string obj(const Gem& gem) {
     return s.str();
 }
 
-std::string off(const Gem& gem) {
-    std::ostringstream s;
-    s << "OFF\n# " << header_comment(gem) << "\n";
-    std::size_t edges = 0;
-    for (const GemFacet& f : gem.facets) edges += f.vertex_ids.size();
-    s << gem.mesh.vertices.size() << " " << gem.facets.size() << " " << edges / 2 << "\n";
+// OFF and PLY share their body: one "x y z" line per vertex, then "count i j k ..." per facet.
+void write_vertices_and_faces(std::ostringstream& s, const Gem& gem) {
     for (const Vec3& v : gem.mesh.vertices) s << xyz(v) << "\n";
     for (const GemFacet& f : gem.facets) {
         s << f.vertex_ids.size();
         for (int i : f.vertex_ids) s << " " << i;
         s << "\n";
     }
+}
+
+std::string off(const Gem& gem) {
+    std::ostringstream s;
+    s << "OFF\n# " << header_comment(gem) << "\n";
+    std::size_t edges = 0;
+    for (const GemFacet& f : gem.facets) edges += f.vertex_ids.size();
+    s << gem.mesh.vertices.size() << " " << gem.facets.size() << " " << edges / 2 << "\n";
+    write_vertices_and_faces(s, gem);
     return s.str();
 }
 
@@ -64,12 +69,7 @@ std::string ply(const Gem& gem) {
     s << "ply\nformat ascii 1.0\ncomment " << header_comment(gem) << "\nelement vertex " << gem.mesh.vertices.size()
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << gem.facets.size()
       << "\nproperty list uchar int vertex_indices\nend_header\n";
-    for (const Vec3& v : gem.mesh.vertices) s << xyz(v) << "\n";
-    for (const GemFacet& f : gem.facets) {
-        s << f.vertex_ids.size();
-        for (int i : f.vertex_ids) s << " " << i;
-        s << "\n";
-    }
+    write_vertices_and_faces(s, gem);
     return s.str();
 }
 
