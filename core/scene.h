@@ -84,8 +84,10 @@ struct SpectralSettings {
     bool shortcut = false;                  // three-wavelength test before the full split
     std::array<double, 3> shortcut_wavelengths{610.0, 545.0, 445.0};
     double shortcut_threshold = 0.01;       // RGB distance of the three contributions
-    int max_reflections = 8;                // per path (the paper's limits)
-    int max_transmissions = 8;
+    // Separate limits per path (the paper used 8 and 8): none unless the scene sets them.
+    // POV-Ray has max_trace_level only, so the compat mode has none by default either.
+    std::optional<int> max_reflections;
+    std::optional<int> max_transmissions;
 };
 
 // Light pass (bidirectional ray tracing): photons from each point light at the transparent

@@ -280,8 +280,8 @@ SpectralSettings parse_spectral(const JsonReader& r, const std::string& file) {
     }
     s.shortcut_threshold = r.number("shortcut_threshold", s.shortcut_threshold);
     if (s.shortcut_threshold < 0) r.fail_at("shortcut_threshold", "must be >= 0");
-    s.max_reflections = r.integer("max_reflections", s.max_reflections, 0, 10000);
-    s.max_transmissions = r.integer("max_transmissions", s.max_transmissions, 0, 10000);
+    if (r.has("max_reflections")) s.max_reflections = r.integer("max_reflections", 0, 0, 10000);
+    if (r.has("max_transmissions")) s.max_transmissions = r.integer("max_transmissions", 0, 0, 10000);
     return s;
 }
 

@@ -211,7 +211,7 @@ TEST_CASE("Ohtsuka driver (quick) writes images, tables and studies; the shortcu
     CHECK(std::stod(thr.rows[5][3]) > std::stod(thr.rows[0][3]));         // larger threshold, fewer segments
     CHECK(std::stod(thr.rows[5][3]) > 1.0);
     const Scene s = load_scene((d / "scene.json").string());
-    CHECK(s.settings.spectral.max_reflections == 8);
+    CHECK(s.settings.spectral.max_reflections.value_or(0) == 8);
     CHECK(s.materials.at(s.objects.at(1).material).dispersion->label.find("iamond") != std::string::npos);
     fs::remove_all(d);
 }
@@ -253,4 +253,27 @@ TEST_CASE("Illumination map of a mesh: each triangle is cut into k^2 similar ele
     CHECK((std::abs(e1 - e0) == 1 || std::abs(e1 - e0) == 20));
     h.point = Vec3(5, 0, 0);
     CHECK(p.element(h) == -1);
+}
+
+TEST_CASE("The paper's 8/8 path limits apply only when a scene sets them (POV-Ray has none)", "[spectral]") {
+    // A diamond sphere: with the limits unset every path up to max_depth counts; set to 1/1
+    // a ray can enter but never leave, and the image changes.
+    const std::string deep = R"({"max_depth": 14, "threshold": 0)";
+    for (const char* compat : {"physical", "povray"}) {
+        INFO(compat);
+        Scene free = glass_scene("\"diamond\"", deep + R"(, "compat": ")" + compat + "\"}");
+        Scene lim = glass_scene("\"diamond\"", deep + R"(, "compat": ")" + compat +
+                                                   R"(", "spectral": {"max_reflections": 1, "max_transmissions": 1}})");
+        Scene same = glass_scene("\"diamond\"", deep + R"(, "compat": ")" + compat +
+                                                    R"(", "spectral": {"max_reflections": 14, "max_transmissions": 14}})");
+        CHECK_FALSE(free.settings.spectral.max_reflections.has_value());
+        CHECK_FALSE(free.settings.spectral.max_transmissions.has_value());
+        const SpectralContext c = SpectralContext::build(free);
+        CHECK(c.max_reflections == SpectralContext::kUnlimited);
+        CHECK(c.max_transmissions == SpectralContext::kUnlimited);
+        const auto a = render(free), b = render(lim), c14 = render(same);
+        CHECK(max_difference(a.image, b.image) > 1e-3);
+        // Limits at max_depth never bind before max_depth does.
+        CHECK(max_difference(a.image, c14.image) == 0.0);
+    }
 }

@@ -161,6 +161,16 @@ TEST_CASE("POV-Ray export refuses what POV-Ray cannot express", "[validation]") 
     CHECK_THAT(refusal(with(g, R"("max_depth": 8)", R"("max_depth": 8, "samples": 4, "jitter": true)")),
                Contains("jitter"));
     CHECK_THAT(refusal(with(g, R"("max_depth": 8)", R"("max_depth": 300)")), Contains("max_trace_level 301"));
+    // The 1998 paper's separate limits, only when a scene sets them below max_depth.
+    {
+        Scene s = scene_from(g);
+        s.settings.spectral.enabled = true;
+        CHECK_NOTHROW(export_pov(s));
+        s.settings.spectral.max_reflections = s.settings.max_depth;
+        CHECK_NOTHROW(export_pov(s));
+        s.settings.spectral.max_transmissions = 3;
+        CHECK_THROWS_WITH(export_pov(s), Contains("/render/spectral/max_transmissions: max_transmissions 3 below max_depth"));
+    }
     // Overlapping transparent spheres, a camera inside glass, a lone negative sphere.
     CHECK_THAT(refusal(with(g, R"("center": [3, 1, 0], "radius": 0.5)", R"("center": [0.8, 1, 0], "radius": 0.5)")),
                Contains("overlap"));

@@ -64,12 +64,14 @@ void check_settings(const Scene& s, const Refuser& refuse, bool photons) {
                                      " samples) differs from POV-Ray's antialiasing");
     if (r.light_pass.enabled && !photons)
         refuse("/render/light_pass", "the light pass (illumination maps) has no exact POV-Ray counterpart (photons are statistical)");
-    if (r.spectral.enabled &&
-        (r.spectral.max_reflections < r.max_depth || r.spectral.max_transmissions < r.max_depth))
-        refuse("/render/spectral", "separate limits on reflections (" + std::to_string(r.spectral.max_reflections) +
-                                       ") and transmissions (" + std::to_string(r.spectral.max_transmissions) +
-                                       ") below max_depth " + std::to_string(r.max_depth) +
-                                       " (POV-Ray has max_trace_level only)");
+    // The paper's separate limits (only when the scene sets them): POV-Ray has
+    // max_trace_level alone, so a limit below max_depth cannot be expressed.
+    for (const auto& [field, limit] : {std::pair{"max_reflections", r.spectral.max_reflections},
+                                       std::pair{"max_transmissions", r.spectral.max_transmissions}})
+        if (r.spectral.enabled && limit && *limit < r.max_depth)
+            refuse(std::string("/render/spectral/") + field,
+                   std::string(field) + " " + std::to_string(*limit) + " below max_depth " + std::to_string(r.max_depth) +
+                       " (the 1998 paper's separate limit; POV-Ray has max_trace_level only)");
     if (r.max_depth + 1 > 256)
         refuse("/render/max_depth", "max_depth " + std::to_string(r.max_depth) +
                                         " needs max_trace_level " + std::to_string(r.max_depth + 1) + " > 256");

@@ -17,8 +17,8 @@ SpectralContext SpectralContext::build(const Scene& scene) {
     c.pov = scene.settings.compat == Compat::PovRay;
     c.shortcut = s.shortcut && !c.pov;
     c.shortcut_threshold = s.shortcut_threshold;
-    c.max_reflections = s.max_reflections;
-    c.max_transmissions = s.max_transmissions;
+    c.max_reflections = s.max_reflections.value_or(SpectralContext::kUnlimited);
+    c.max_transmissions = s.max_transmissions.value_or(SpectralContext::kUnlimited);
     c.dispersive.assign(scene.materials.size(), 0);
     // POV-Ray's bands and hue colours when compat mode meets a "povray" model.
     const spectrum::PovRayModel* povmodel = nullptr;

@@ -3,8 +3,8 @@
 // first hit on a dispersive dielectric; there it splits into one ray per sampled
 // wavelength, each refracted with that wavelength's index, and every wavelength is then
 // traced alone (the Fresnel-tree walk of Yasuda 1984 with the branch's own index), with
-// at most `max_reflections` reflections and `max_transmissions` transmissions per path
-// besides the cumulative-attenuation threshold. Wavelength i's RGB result is weighted by
+// the cumulative-attenuation threshold, max_depth and, when the scene sets them, the
+// paper's separate limits on reflections and transmissions per path. Wavelength i's RGB result is weighted by
 // the colour converter's weight(i) (core/spectrum/cie.h, white balanced so the weights
 // sum to (1, 1, 1)) and summed; the pixel is finished (clipped for cie-rgb) at the end.
 //
@@ -35,7 +35,8 @@ struct SpectralContext {
     bool clip = true;                       // cie-rgb: clip negatives at the end
     bool shortcut = false;
     double shortcut_threshold = 0.01;
-    int max_reflections = 8, max_transmissions = 8;
+    static constexpr int kUnlimited = 1 << 30;
+    int max_reflections = kUnlimited, max_transmissions = kUnlimited;  // unset: no limit
     const IlluminationMaps* maps = nullptr; // light pass result, read at diffuse hits
 
     size_t bands() const { return wavelengths.size(); }
