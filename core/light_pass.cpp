@@ -184,7 +184,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
                 for (int b = only_refraction ? 1 : 0; b < n.branches; ++b) {
                     const Branch& br = n.branch[b];
                     const double bail = ph.bailout * br.bailout_factor;
-                    if (bail <= 0 || bail < rs.threshold) continue;
+                    if (bail <= 0 || bail < rs.pruning_threshold()) continue;
                     const bool tr = b == 1;
                     const int refl = ph.refl + (tr ? 0 : 1), trans = ph.trans + (tr ? 1 : 0);
                     if (ph.depth + 1 > rs.max_depth || refl > ctx.max_reflections || trans > ctx.max_transmissions)

@@ -112,6 +112,9 @@ struct RenderSettings {
     // Yasuda's cumulative-attenuation threshold (POV-Ray adc_bailout): a branch whose
     // weight falls below it is dropped. 0 keeps every branch.
     double threshold = 1.0 / 255.0;
+    // The threshold in force: Whitted's stored tree never prunes, whichever pass walks it
+    // (the spectral eye pass included).
+    double pruning_threshold() const { return integrator == IntegratorKind::Whitted ? 0.0 : threshold; }
     int samples = 1;          // samples per pixel
     bool jitter = false;      // jittered supersampling inside the pixel
     std::uint64_t seed = 1;   // stochastic integrator and jitter

@@ -140,7 +140,7 @@ double SceneTracer::reflectance(const Material& m, double cos_i, double eta) {
     return 1.0;
 }
 
-Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior) const {
+Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior, bool split) const {
     const Material& m = *h.material;
     const bool pov = scene_.settings.compat == Compat::PovRay;
     Node n;
@@ -170,7 +170,7 @@ Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, 
     const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
     const auto refr = optics::refract(ray.dir, h.normal, eta);
     if (pov) {
-        n = dielectric_node_pov(h, ray, cos_i, h.entering ? nominal : 1.0 / nominal, refr, band_ior > 0);
+        n = dielectric_node_pov(h, ray, cos_i, h.entering ? nominal : 1.0 / nominal, refr, band_ior > 0, split);
         return n;
     }
     // Constant reflectivity (Whitted, Fig. 9) keeps its ks even where the direction
@@ -193,7 +193,7 @@ Node SceneTracer::node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, 
 }
 
 Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
-                                      const std::optional<Vec3>& refr, bool band) const {
+                                      const std::optional<Vec3>& refr, bool band, bool split) const {
     // POV-Ray 3.7 with `reflection { MIN, MAX fresnel on } conserve_energy` or
     // `reflection { ks } conserve_energy` and `pigment { rgbf <filter, 1> }`
     // (trace.cpp ComputeLightedTexture, ComputeReflectivity, ComputeRefraction):
@@ -207,9 +207,15 @@ Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, doubl
     //   colour factor 1 (unfiltered) with the refraction's adc weight, and replaces the
     //   reflection term;
     // - the reflected ray has colour factor R and adc weight parent × R; none when R = 0.
+    // Dispersion (ComputeRefraction): an RGB ray splits into bands at its first refraction
+    // whenever the refracted ray is spawned, even where the nominal index meets total
+    // internal reflection (a constant ks); a band meeting total internal reflection there
+    // (`split`) becomes a mirror ray filtered by filter·(1 − R) like the refraction (the
+    // band loop discards the TIR flag), and the reflection term is kept. A ray that is
+    // already one band (`band`) follows the rule above with its own index.
     const Material& m = *h.material;
     const RenderSettings& s = scene_.settings;
-    const double adc = s.integrator == IntegratorKind::Whitted ? 0.0 : s.threshold;
+    const double adc = s.pruning_threshold();
     double R = reflectance(m, cos_i, eta);
     // A band ray (dispersion) keeps the nominal index's R even where its own index meets
     // total internal reflection; the refracted ray then turns into the mirror ray below.
@@ -219,6 +225,12 @@ Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, doubl
     const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()};
     Node n;
     n.reflectance = R;
+    if (trans > adc && !refr && split) {  // a band's total internal reflection at the split
+        n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
+        n.branch[1] = Branch{reflected, filter, filter.cwiseAbs().maxCoeff()};
+        n.branches = 2;
+        return n;
+    }
     if (trans > adc && !refr) {  // the refracted ray turns into total internal reflection
         n.branch[0] = Branch{reflected, Vec3(1, 1, 1), filter.cwiseAbs().maxCoeff()};
         n.branches = 1;

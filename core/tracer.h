@@ -49,7 +49,9 @@ public:
     // `band_ior` > 0: a dielectric's index at one wavelength (spectral tracing) instead of
     // its `ior`; the physical mode uses it for Fresnel and Snell, the POV-Ray mode for the
     // refraction direction and the TIR test only (Fresnel keeps the nominal `ior`).
-    Node node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior = 0) const;
+    // `split`: POV-Ray mode, the band's share of an RGB ray splitting at its first
+    // refraction (see dielectric_node_pov).
+    Node node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior = 0, bool split = false) const;
 
     // Dielectric reflectance for the material's model at cos θi and relative index eta
     // (Constant, Fresnel, Fresnel-s, Fresnel-p, Schlick); 1 on TIR for physical models.
@@ -75,7 +77,7 @@ private:
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
     Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to) const;
     Node dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
-                             const std::optional<Vec3>& refr, bool band) const;
+                             const std::optional<Vec3>& refr, bool band, bool split) const;
     const Scene& scene_;
 };
 

@@ -114,3 +114,44 @@ TEST_CASE("RTIOW depth: the stochastic integrator's mean equals the Fresnel tree
     }
     CHECK(checked >= 6);  // the pixels chosen do mix reflection and refraction
 }
+
+TEST_CASE("Depth limit: the ray after the last bounce still shows an emissive surface, in every integrator", "[rtiow]") {
+    // A mirror sphere reflecting a large emissive sphere behind the camera. max_depth 0: the
+    // primary ray's own hit is shaded (the lamp seen directly, the mirror black); max_depth
+    // 1: the mirror shows the lamp. The stochastic integrator agrees with the Fresnel tree.
+    Scene s = rtiow_glass(0);
+    s.objects.clear();
+    s.materials.clear();
+    Material mirror;
+    mirror.kind = MaterialKind::Mirror;
+    mirror.color = Vec3(0.5, 0.6, 0.7);
+    Material lamp;
+    lamp.kind = MaterialKind::Emissive;
+    lamp.color = Vec3(3, 2, 1);
+    s.materials = {mirror, lamp};
+    s.objects.push_back({"mirror", Sphere{Vec3(0, 0, 0), 0.8}, 0});
+    s.objects.push_back({"lamp", Sphere{Vec3(0, 0, -6), 2.5}, 1});
+    s.background.kind = Background::Kind::Solid;
+    s.background.color = Vec3(0, 0, 0);
+    const Ray centre = s.camera.ray(12, 8);  // hits the mirror head on, reflects into the lamp
+    for (int depth : {0, 1}) {
+        INFO("max_depth " << depth);
+        s.settings.max_depth = depth;
+        Scene tree_scene = s;
+        tree_scene.settings.integrator = IntegratorKind::FresnelTree;
+        RenderStats st;
+        Rng rng(1, 0, 0);
+        const Vec3 stochastic = stochastic_radiance(SceneTracer(s), centre, rng, st);
+        const Vec3 tree = fresnel_tree_radiance(SceneTracer(tree_scene), centre, st);
+        const Vec3 expected = depth == 0 ? Vec3(0, 0, 0) : Vec3(1.5, 1.2, 0.7);
+        CHECK((stochastic - expected).norm() < 1e-12);
+        CHECK((tree - expected).norm() < 1e-12);
+    }
+    // The lamp seen directly at max_depth 0.
+    s.settings.max_depth = 0;
+    s.objects.erase(s.objects.begin());
+    s.objects[0].shape = Sphere{Vec3(0, 0, 2), 1.0};
+    RenderStats st;
+    Rng rng(1, 0, 0);
+    CHECK((stochastic_radiance(SceneTracer(s), s.camera.ray(12, 8), rng, st) - Vec3(3, 2, 1)).norm() < 1e-12);
+}

@@ -131,7 +131,8 @@ TEST_CASE("POV-Ray export: orthographic camera, mesh2, intersection of planes, h
     CHECK_THAT(pov, Contains("right x*6"));
     CHECK_THAT(pov, Contains("sky_sphere"));
     CHECK_THAT(pov, Contains("gradient y color_map { [0 rgb <1, 1, 1>] [1 rgb <0.5, 0.7, 1>] } scale 2 translate -y"));
-    CHECK_THAT(pov, Contains("union {"));  // the hollow sphere shares one interior
+    CHECK_THAT(pov, Contains("intersection {\n  sphere { <0, 0, 0>, 0.5 }"));  // the hollow sphere: one interior
+    CHECK_THAT(pov, Contains("inside_vector"));  // a transparent mesh is a solid to POV-Ray's inside test
     CHECK_THAT(pov, Contains("sphere { <0, 0, 0>, 0.45 inverse }"));
     CHECK_THAT(pov, Contains("mesh2 {"));
     CHECK_THAT(pov, Contains("vertex_vectors { 4"));
@@ -174,7 +175,19 @@ TEST_CASE("POV-Ray export refuses what POV-Ray cannot express", "[validation]") 
     // Overlapping transparent spheres, a camera inside glass, a lone negative sphere.
     CHECK_THAT(refusal(with(g, R"("center": [3, 1, 0], "radius": 0.5)", R"("center": [0.8, 1, 0], "radius": 0.5)")),
                Contains("overlap"));
-    CHECK_THAT(refusal(with(g, R"("location": [0, 1.5, -5])", R"("location": [0.3, 1.2, -0.2])")), Contains("camera is inside"));
+    // A camera inside glass is expressible (POV-Ray starts the ray inside it); inside an
+    // opaque object the export turns that object inside out (its Fresnel rule at glass
+    // exits); an orthographic image plane across an opaque surface is refused.
+    CHECK_NOTHROW(export_pov(scene_from(with(g, R"("location": [0, 1.5, -5])", R"("location": [0.3, 1.2, -0.2])"))));
+    CHECK_THAT(export_pov(scene_from(with(g, R"("center": [-3, 1, 0], "radius": 0.5)", R"("center": [0, 1, -3], "radius": 4)"))),
+               Contains("sphere { <0, 1, -3>, 4 inverse texture"));
+    CHECK_THAT(export_pov(scene_from(with(g, R"("normal": [0, 1, 0], "offset": 0)", R"("normal": [0, -1, 0], "offset": 0)"))),
+               Contains("plane { <0, -1, 0>, 0 inverse texture"));
+    CHECK_THAT(refusal(with(with(g, R"("camera": {)", R"("camera": {"type": "orthographic", "ortho_height": 6, )"),
+                            R"("location": [0, 1.5, -5])", R"("location": [0, 0.5, -5])")),
+               Contains("orthographic image plane crosses"));
+    // An index that is 1 in single precision, a mesh wound inside out.
+    CHECK_THAT(refusal(with(g, R"("ior": 1.5, "filter")", R"("ior": 1.00000001, "filter")")), Contains("single precision"));
     CHECK_THAT(refusal(with(g, R"("center": [0, 1, 0], "radius": 1,)", R"("center": [0, 1, 0], "radius": -1,)")),
                Contains("negative-radius"));
     // A single glass triangle is not a closed solid.
@@ -182,6 +195,10 @@ TEST_CASE("POV-Ray export refuses what POV-Ray cannot express", "[validation]") 
                             R"({"type": "mesh", "vertices": [[0,0,1],[1,0,1],[0,1,1]], "triangles": [[0,1,2]],
                                 "material": "glass"})")),
                Contains("closed"));
+    CHECK_THAT(refusal(with(g, R"({"type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "glass"})",
+                            R"({"type": "mesh", "vertices": [[2,0,0],[3,0,0],[2,1,0],[2,0,1]],
+                                "triangles": [[0,1,2],[0,3,1],[0,2,3],[1,3,2]], "material": "glass"})")),
+               Contains("counter-clockwise"));
     // A refusal is one line naming the file.
     const std::string msg = refusal(with(g, R"("type": "mirror", "color")", R"("type": "lambertian", "color")"));
     CHECK(msg.find('\n') == std::string::npos);

@@ -96,8 +96,10 @@ void check_material(const Material& m, const Refuser& refuse) {
                 refuse(material_where(m), "reflectance 'schlick' (POV-Ray has exact unpolarised Fresnel only)");
             if (m.reflectance == ReflectanceModel::FresnelS || m.reflectance == ReflectanceModel::FresnelP)
                 refuse(material_where(m), "a polarised reflectance (POV-Ray has unpolarised Fresnel only)");
-            if (std::abs(m.ior - 1.0) < 1e-9)
-                refuse(material_where(m), "ior 1 (POV-Ray passes such an interface without counting a trace level)");
+            // POV-Ray stores the index in single precision and passes an interface of
+            // index 1.0f straight on without counting a trace level (trace.cpp, continuedRay).
+            if (static_cast<float>(m.ior) == 1.0f)
+                refuse(material_where(m), "ior 1 in single precision (POV-Ray passes such an interface without counting a trace level)");
             for (int c = 0; c < 3; ++c)
                 if (m.filter[c] < 0) refuse(material_where(m), "a negative filter component");
             return;
@@ -182,55 +184,66 @@ std::optional<Box> object_box(const Shape& shape) {
     return std::nullopt;  // plane: a half-space
 }
 
-bool mesh_is_closed(const TriangleMesh& m) {
+// Closed and consistently wound counter-clockwise seen from outside: every directed edge
+// once, its reverse once, and a positive volume. refract decides entering by the
+// triangle's normal, POV-Ray by the ray's list of interiors; they agree only then.
+bool mesh_is_closed_outward(const TriangleMesh& m) {
     std::map<std::pair<int, int>, int> edges;
-    for (const auto& t : m.triangles)
-        for (int e = 0; e < 3; ++e) {
-            const int a = t[e], b = t[(e + 1) % 3];
-            ++edges[{std::min(a, b), std::max(a, b)}];
-        }
-    for (const auto& [edge, count] : edges)
-        if (count != 2) return false;
-    return true;
+    double volume6 = 0;
+    for (const auto& t : m.triangles) {
+        for (int e = 0; e < 3; ++e) ++edges[{t[e], t[(e + 1) % 3]}];
+        volume6 += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]]));
+    }
+    for (const auto& [edge, count] : edges) {
+        const auto rev = edges.find({edge.second, edge.first});
+        if (count != 1 || rev == edges.end() || rev->second != 1) return false;
+    }
+    return volume6 > 0;
 }
 
-// Is point p inside (or on) the solid? Meshes by the parity of crossings along a ray.
-bool point_inside(const Shape& shape, const Vec3& p) {
-    if (const auto* s = std::get_if<Sphere>(&shape)) return (p - s->center).norm() <= s->radius * (1 + 1e-12);
-    if (const auto* pl = std::get_if<Plane>(&shape)) return pl->normal.dot(p) <= pl->offset + 1e-12;
+// POV-Ray 3.7's inside test of an exported opaque object (Inside_BBox and Object::Inside):
+// strictly inside a sphere, on the negative side of a plane, inside every plane of an
+// intersection; never inside a mesh2 without inside_vector (opaque meshes have none).
+bool pov_inside(const Shape& shape, const Vec3& p) {
+    if (const auto* s = std::get_if<Sphere>(&shape)) return (p - s->center).squaredNorm() < s->radius * s->radius;
+    if (const auto* pl = std::get_if<Plane>(&shape)) return pl->normal.dot(p) - pl->offset < 0;
     if (const auto* c = std::get_if<ConvexPolyhedron>(&shape)) {
         for (const Plane& q : c->planes)
-            if (q.normal.dot(p) > q.offset + 1e-12) return false;
+            if (!(q.normal.dot(p) - q.offset < 0)) return false;
         return true;
     }
-    const auto& m = std::get<TriangleMesh>(shape);
-    const Ray ray{p, Vec3(0.5773, 0.5774, 0.5775).normalized()};
-    int crossings = 0;
-    double t = 0;
-    while (const auto h = intersect(m, ray, t, INFINITY)) {
-        ++crossings;
-        t = h->t;
-    }
-    return crossings % 2 == 1;
+    return false;
 }
 
-// Does the solid reach the camera's ray origins? Perspective: the location. Orthographic:
-// the image rectangle the parallel rays start from (spheres exactly, others by boxes).
-bool camera_inside(const Shape& shape, const Camera& cam) {
-    if (cam.type == Camera::Type::Perspective) return point_inside(shape, cam.location);
+// Where the camera's rays start relative to an opaque object, by POV-Ray's inside test:
+// perspective rays start at the location; orthographic ones on the image rectangle, which
+// may lie wholly inside, wholly outside or across the surface (spheres exactly, planes by
+// the corners, polyhedra by boxes: "across" when unsure).
+enum class Containment { Outside, Inside, Across };
+
+Containment camera_containment(const Shape& shape, const Camera& cam) {
+    if (cam.type == Camera::Type::Perspective)
+        return pov_inside(shape, cam.location) ? Containment::Inside : Containment::Outside;
+    if (std::holds_alternative<TriangleMesh>(shape)) return Containment::Outside;
     const Camera::Basis b = cam.basis();
     const Vec3 corner = cam.location - 0.5 * b.R - 0.5 * b.U;
+    const Vec3 corners[4] = {corner, corner + b.R, corner + b.U, corner + b.R + b.U};
+    int inside = 0;
+    for (const Vec3& c : corners) inside += pov_inside(shape, c);
+    if (inside == 4) return Containment::Inside;  // convex solids: the rectangle too
+    if (inside > 0) return Containment::Across;
+    if (std::holds_alternative<Plane>(shape)) return Containment::Outside;
     if (const auto* s = std::get_if<Sphere>(&shape)) {
-        if (s->radius < 0) return true;
         const Vec3 q = s->center - corner;
         const double u = std::clamp(q.dot(b.R) / b.R.squaredNorm(), 0.0, 1.0);
         const double v = std::clamp(q.dot(b.U) / b.U.squaredNorm(), 0.0, 1.0);
-        return (corner + u * b.R + v * b.U - s->center).norm() <= s->radius;
+        return (corner + u * b.R + v * b.U - s->center).norm() < std::abs(s->radius) ? Containment::Across
+                                                                                      : Containment::Outside;
     }
     const auto box = object_box(shape);
-    if (!box) return true;
+    if (!box) return Containment::Across;
     Box rect{corner, corner};
-    for (const Vec3& p : {Vec3(corner + b.R), Vec3(corner + b.U), Vec3(corner + b.R + b.U)}) {
+    for (const Vec3& p : corners) {
         rect.lo = rect.lo.cwiseMin(p);
         rect.hi = rect.hi.cwiseMax(p);
     }
@@ -238,7 +251,7 @@ bool camera_inside(const Shape& shape, const Camera& cam) {
         rect.lo[k] -= 1e-9;
         rect.hi[k] += 1e-9;
     }
-    return overlap(rect, *box);
+    return overlap(rect, *box) ? Containment::Across : Containment::Outside;
 }
 
 bool same_dispersion(const Material& a, const Material& b) {
@@ -264,9 +277,9 @@ std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser
         const auto* sp = std::get_if<Sphere>(&o.shape);
         (sp && sp->radius < 0 ? holes : solids).push_back(k);
         if (const auto* m = std::get_if<TriangleMesh>(&o.shape))
-            if (!mesh_is_closed(*m)) refuse(object_where(o), "a transparent mesh must be closed (every edge in two triangles)");
-        if (!(sp && sp->radius < 0) && camera_inside(o.shape, s.camera))
-            refuse(object_where(o), "the camera is inside (or its image plane cuts) a transparent object");
+            if (!mesh_is_closed_outward(*m))
+                refuse(object_where(o), "a transparent mesh must be closed and wound counter-clockwise seen from "
+                                        "outside (every edge in two triangles, in opposite directions)");
     }
     // Solids pairwise disjoint.
     for (size_t a = 0; a < solids.size(); ++a)
@@ -361,7 +374,9 @@ std::string interior(const Material& m) {
     return s + " }";
 }
 
-std::string shape(const Shape& sh) {
+// `solid`: a transparent object, whose mesh gets an inside_vector so that POV-Ray's
+// inside test (a camera inside it) sees the solid (mesh.cpp: no vector, never inside).
+std::string shape(const Shape& sh, bool solid = false) {
     std::ostringstream o;
     if (const auto* s = std::get_if<Sphere>(&sh)) {
         o << "sphere { " << vec(s->center) << ", " << pov_number(std::abs(s->radius));
@@ -374,6 +389,7 @@ std::string shape(const Shape& sh) {
         o << " }\n    face_indices { " << m->triangles.size();
         for (const auto& t : m->triangles) o << ",\n      <" << t[0] << ", " << t[1] << ", " << t[2] << ">";
         o << " }\n   ";
+        if (solid) o << " inside_vector <0.5773, 0.5774, 0.5775>\n   ";
     } else {
         const auto& c = std::get<ConvexPolyhedron>(sh);
         o << "intersection {";
@@ -422,9 +438,8 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     o << "#version 3.7;\n"
       << "// Exported by refract from " << comment_text(s.source.empty() ? "a scene" : s.source)
       << "; renders what refract renders with \"compat\": \"povray\".\n";
-    const bool whitted = s.settings.integrator == IntegratorKind::Whitted;
     o << "global_settings {\n  assumed_gamma 1.0\n  max_trace_level " << s.settings.max_depth + 1
-      << "\n  adc_bailout " << pov_number(whitted ? 0.0 : s.settings.threshold);
+      << "\n  adc_bailout " << pov_number(s.settings.pruning_threshold());
     if (opt.photons) {
         const std::uint64_t n = opt.photon_count ? opt.photon_count : s.settings.light_pass.photons;
         o << "\n  photons { count " << n << " }";
@@ -442,8 +457,17 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         const Material& m = s.materials[obj.material];
         Shape sh = obj.shape;
         if (auto* sp = std::get_if<Sphere>(&sh)) sp->radius = std::abs(sp->radius);  // opaque: the normal side is moot
+        // POV-Ray starts every camera ray inside the objects that contain the camera, and
+        // then computes the Fresnel reflectance at every exit from glass with the relative
+        // index 1 (trace.cpp ComputeRelativeIOR uses the index of the object being left).
+        // An opaque object looks the same turned inside out, so the export inverts one that
+        // contains the camera and POV-Ray's lists stay those of refract.
+        const Containment c = camera_containment(sh, s.camera);
+        if (c == Containment::Across)
+            refuse(object_where(obj), "the orthographic image plane crosses the surface of an object (POV-Ray "
+                                      "starts such rays inside it and drops Fresnel reflection at glass exits)");
         o << "// " << comment_text(obj.name) << " (" << comment_text(m.name) << ")\n";
-        o << shape(sh) << " " << texture(m);
+        o << shape(sh) << (c == Containment::Inside ? " inverse" : "") << " " << texture(m);
         if (m.kind == MaterialKind::Emissive) o << " no_shadow";  // a highlight sphere, not an occluder
         o << " }\n";
     }
@@ -452,12 +476,14 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         const Material& m = s.materials[s.objects[g[0]].material];
         o << "// " << comment_text(s.objects[g[0]].name) << " (" << comment_text(m.name) << ")";
         if (g.size() == 1) {
-            o << "\n" << shape(s.objects[g[0]].shape) << " " << texture(m) << " " << interior(m) << target << " }\n";
+            o << "\n" << shape(s.objects[g[0]].shape, true) << " " << texture(m) << " " << interior(m) << target << " }\n";
             continue;
         }
         o << " hollowed by";
         for (size_t i = 1; i < g.size(); ++i) o << " " << comment_text(s.objects[g[i]].name);
-        o << "\nunion {\n";  // one interior for all the surfaces of the hollow solid
+        // One interior for all the surfaces of the hollow solid; an intersection, so that
+        // POV-Ray's inside test (a camera in the shell or in a cavity) is the solid's.
+        o << "\nintersection {\n";
         for (size_t i : g) o << "  " << shape(s.objects[i].shape) << " }\n";
         o << "  " << texture(m) << "\n  " << interior(m) << target << "\n}\n";
     }

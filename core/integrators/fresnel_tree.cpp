@@ -33,7 +33,7 @@ Vec3 fresnel_tree_radiance(const SceneTracer& tracer, const Ray& primary, Render
         for (int b = 0; b < n.branches; ++b) {
             const Branch& br = n.branch[b];
             const double bail = e.bailout * br.bailout_factor;
-            if (bail <= 0 || bail < s.threshold) {
+            if (bail <= 0 || bail < s.pruning_threshold()) {
                 ++stats.pruned;
                 continue;
             }

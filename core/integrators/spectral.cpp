@@ -112,7 +112,7 @@ private:
 
     void push(const Entry& e, const Branch& br, bool transmitted, std::deque<Entry>& list) {
         const double bail = e.bailout * br.bailout_factor;
-        if (bail <= 0 || bail < tracer_.settings().threshold) {
+        if (bail <= 0 || bail < tracer_.settings().pruning_threshold()) {
             ++stats_.pruned;
             return;
         }
@@ -140,20 +140,17 @@ private:
         const int mi = h.object->material;
         if (ctx_.pov) {
             // POV-Ray: Fresnel and the reflected ray with the nominal index (stays RGB);
-            // the refracted ray splits into bands, each with its own direction and TIR test.
-            const Node nominal = tracer_.node(h, e.ray, stats_);
-            if (nominal.branches < 2) {  // nothing refracts: an ordinary node
-                for (int b = 0; b < nominal.branches; ++b) push(e, nominal.branch[b], false, rgb_list);
-                return e.weight.cwiseProduct(nominal.local);
-            }
-            push(e, nominal.branch[0], false, rgb_list);
+            // the refracted ray, when spawned, splits into bands, each with its own
+            // direction and TIR test (SceneTracer::dielectric_node_pov, `split`).
+            const Node first = tracer_.node(h, e.ray, stats_, ctx_.index[0][mi], true);
+            if (first.branches > 0) push(e, first.branch[0], false, rgb_list);
+            if (first.branches < 2) return e.weight.cwiseProduct(first.local);  // nothing refracts
             Vec3 sum(0, 0, 0);
             for (size_t k = 0; k < ctx_.bands(); ++k) {
                 const std::uint64_t before = stats_.segments;
-                const Node bn = tracer_.node(h, e.ray, stats_, ctx_.index[k][mi]);
+                const Node bn = k == 0 ? first : tracer_.node(h, e.ray, stats_, ctx_.index[k][mi], true);
                 std::deque<Entry> list;
-                const bool refracts = bn.branches == 2;
-                push(e, bn.branch[refracts ? 1 : 0], refracts, list);
+                push(e, bn.branch[1], true, list);
                 sum += ctx_.weights[k].cwiseProduct(walk(list, static_cast<int>(k)));
                 stats_.wavelength_segments += stats_.segments - before;
             }

@@ -12,11 +12,15 @@ Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng
     for (int depth = 0;; ++depth) {
         const auto hit = tracer.intersect(ray, stats);
         if (!hit) return radiance + throughput.cwiseProduct(tracer.background(ray.dir));
-        if (depth + 1 > s.max_depth) {  // RTIOW: no more light gathered past the depth limit
+        const Material& m = *hit->material;
+        if (depth + 1 > s.max_depth) {
+            // The ray after the last bounce: its hit's own light counts (emissive, direct
+            // light on a diffuse surface), as in the tree integrators; nothing scatters on.
             ++stats.depth_limited;
+            if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal)
+                radiance += throughput.cwiseProduct(tracer.node(*hit, ray, stats).local);
             return radiance;
         }
-        const Material& m = *hit->material;
         const Vec3& p = hit->hit.point;
         Vec3 dir;
         if (m.kind == MaterialKind::Lambertian) {
