@@ -195,9 +195,9 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
             };
             if (ph.band < 0 && ctx.dispersive[static_cast<size_t>(mi)]) {
                 // First transparent hit: one ray per band, each with the band's weight.
-                for (size_t k = 0; k < ctx.bands(); ++k)
-                    push_node(tracer.node(*hit, ph.ray, st, ctx.index[k][static_cast<size_t>(mi)]), ctx.weights[k],
-                              static_cast<int>(k), false);
+                for (const int k : ctx.split_bands[static_cast<size_t>(mi)])
+                    push_node(tracer.node(*hit, ph.ray, st, ctx.index[static_cast<size_t>(k)][static_cast<size_t>(mi)]),
+                              ctx.weights[static_cast<size_t>(k)], k, false);
                 continue;
             }
             const double band_ior = ph.band < 0 ? 0.0 : ctx.index[static_cast<size_t>(ph.band)][static_cast<size_t>(mi)];

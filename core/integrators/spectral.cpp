@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <deque>
+#include <map>
+#include <numeric>
 
 #include "core/illumination_map.h"
 #include "core/spectrum/cie.h"
@@ -11,24 +13,45 @@ namespace refract {
 
 Vec3 SpectralContext::finish(const Vec3& rgb) const { return clip ? Vec3(rgb.cwiseMax(0.0)) : rgb; }
 
+namespace {
+
+// POV-Ray splits a ray at an interior only when its dispersion, stored in single
+// precision, differs from 1 (trace.cpp: haveDispersion = fabs(dispersion - 1.0) >= EPSILON).
+const spectrum::PovRayModel* pov_splitting_model(const Material& m) {
+    constexpr double kPovEpsilon = 1e-10;
+    if (m.kind != MaterialKind::Dielectric || !m.dispersion || !m.dispersion->is_povray()) return nullptr;
+    const auto& p = std::get<spectrum::PovRayModel>(m.dispersion->model);
+    return std::fabs(static_cast<double>(static_cast<float>(p.dispersion)) - 1.0) >= kPovEpsilon ? &p : nullptr;
+}
+
+}  // namespace
+
 SpectralContext SpectralContext::build(const Scene& scene) {
     const SpectralSettings& s = scene.settings.spectral;
+    const size_t materials = scene.materials.size();
     SpectralContext c;
     c.pov = scene.settings.compat == Compat::PovRay;
     c.shortcut = s.shortcut && !c.pov;
     c.shortcut_threshold = s.shortcut_threshold;
     c.max_reflections = s.max_reflections.value_or(SpectralContext::kUnlimited);
     c.max_transmissions = s.max_transmissions.value_or(SpectralContext::kUnlimited);
-    c.dispersive.assign(scene.materials.size(), 0);
-    // POV-Ray's bands and hue colours when compat mode meets a "povray" model.
-    const spectrum::PovRayModel* povmodel = nullptr;
-    for (const Material& m : scene.materials)
-        if (c.pov && m.dispersion && m.dispersion->is_povray() && !povmodel)
-            povmodel = &std::get<spectrum::PovRayModel>(m.dispersion->model);
-    if (povmodel) {
-        for (const auto& b : spectrum::povray_bands(povmodel->samples)) {
-            c.wavelengths.push_back(b.wavelength_nm);
-            c.weights.push_back(b.hue / povmodel->samples);
+    c.dispersive.assign(materials, 0);
+    c.split_bands.assign(materials, {});
+    if (c.pov) {
+        // POV-Ray's bands and hue colours: one band set per distinct dispersion_samples.
+        std::map<int, std::vector<int>> sets;  // samples → its bands
+        for (size_t mi = 0; mi < materials; ++mi) {
+            const spectrum::PovRayModel* p = pov_splitting_model(scene.materials[mi]);
+            if (!p) continue;
+            const auto [set, added] = sets.try_emplace(p->samples);
+            if (added)
+                for (const auto& b : spectrum::povray_bands(p->samples)) {
+                    set->second.push_back(static_cast<int>(c.wavelengths.size()));
+                    c.wavelengths.push_back(b.wavelength_nm);
+                    c.weights.push_back(b.hue / p->samples);
+                }
+            c.dispersive[mi] = 1;
+            c.split_bands[mi] = set->second;
         }
         c.clip = false;  // POV-Ray keeps the band sums as they are
     } else {
@@ -38,14 +61,20 @@ SpectralContext SpectralContext::build(const Scene& scene) {
         c.wavelengths = conv.wavelengths();
         c.weights = conv.weights();
         c.clip = s.pipeline == spectrum::ColourPipeline::CieRgb;
+        std::vector<int> all_bands(c.bands());
+        std::iota(all_bands.begin(), all_bands.end(), 0);
+        c.split_bands.assign(materials, all_bands);
+        for (size_t mi = 0; mi < materials; ++mi) {
+            const Material& m = scene.materials[mi];
+            c.dispersive[mi] = m.kind == MaterialKind::Dielectric && m.dispersion.has_value();
+        }
     }
     std::vector<double> all = c.wavelengths;
     all.insert(all.end(), s.shortcut_wavelengths.begin(), s.shortcut_wavelengths.end());
-    c.index.assign(all.size(), std::vector<double>(scene.materials.size(), 0.0));
-    for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
+    c.index.assign(all.size(), std::vector<double>(materials, 0.0));
+    for (size_t mi = 0; mi < materials; ++mi) {
+        if (!c.dispersive[mi]) continue;
         const Material& m = scene.materials[mi];
-        if (m.kind != MaterialKind::Dielectric || !m.dispersion) continue;
-        c.dispersive[mi] = 1;
         for (size_t b = 0; b < all.size(); ++b) {
             double n = m.dispersion->n(all[b]);
             // POV-Ray's law is relative to the interior's ior (single precision there).
@@ -142,16 +171,17 @@ private:
             // POV-Ray: Fresnel and the reflected ray with the nominal index (stays RGB);
             // the refracted ray, when spawned, splits into bands, each with its own
             // direction and TIR test (SceneTracer::dielectric_node_pov, `split`).
-            const Node first = tracer_.node(h, e.ray, stats_, ctx_.index[0][mi], true);
+            const std::vector<int>& bands = ctx_.split_bands[mi];
+            const Node first = tracer_.node(h, e.ray, stats_, ctx_.index[bands[0]][mi], true);
             if (first.branches > 0) push(e, first.branch[0], false, rgb_list);
             if (first.branches < 2) return e.weight.cwiseProduct(first.local);  // nothing refracts
             Vec3 sum(0, 0, 0);
-            for (size_t k = 0; k < ctx_.bands(); ++k) {
+            for (const int k : bands) {
                 const std::uint64_t before = stats_.segments;
-                const Node bn = k == 0 ? first : tracer_.node(h, e.ray, stats_, ctx_.index[k][mi], true);
+                const Node bn = k == bands[0] ? first : tracer_.node(h, e.ray, stats_, ctx_.index[k][mi], true);
                 std::deque<Entry> list;
                 push(e, bn.branch[1], true, list);
-                sum += ctx_.weights[k].cwiseProduct(walk(list, static_cast<int>(k)));
+                sum += ctx_.weights[k].cwiseProduct(walk(list, k));
                 stats_.wavelength_segments += stats_.segments - before;
             }
             return sum;
@@ -167,8 +197,7 @@ private:
             }
         }
         Vec3 sum(0, 0, 0);
-        for (size_t k = 0; k < ctx_.bands(); ++k)
-            sum += ctx_.weights[k].cwiseProduct(band_tree(e, h, static_cast<int>(k)));
+        for (const int k : ctx_.split_bands[mi]) sum += ctx_.weights[k].cwiseProduct(band_tree(e, h, k));
         return sum;
     }
 

@@ -12,9 +12,13 @@
 // contributions lie within `shortcut_threshold` of each other in RGB, their mean stands
 // for the split and the full split is skipped.
 //
-// POV-Ray compat mode: the split happens at the first refraction only (the reflected ray
-// stays RGB, Fresnel with the nominal index); bands and colours are POV-Ray's
-// (dispersion_samples, hue table) when a material uses the "povray" model.
+// POV-Ray compat mode (trace.cpp, Trace::ComputeRefraction, POV-Ray 3.7): the split
+// happens at the first refraction only (the reflected ray stays RGB, Fresnel with the
+// nominal index). Only a "povray" model whose dispersion D, in single precision as POV-Ray
+// stores it, differs from 1 (|D − 1| >= 1e-10) splits; each such material splits into its
+// own `samples` bands (POV-Ray's dispersion_samples, wavelengths and hue colours). A band
+// ray keeps its wavelength: at another dispersive material it refracts with that
+// material's index at the band's wavelength (GetDispersionIOR), without splitting again.
 #include <memory>
 #include <vector>
 
@@ -25,12 +29,19 @@ namespace refract {
 struct IlluminationMaps;
 
 struct SpectralContext {
-    std::vector<double> wavelengths;        // the bands, nm
-    std::vector<Vec3> weights;              // RGB weight of each band; they sum to (1, 1, 1)
-    // index[b][material]: the material's index at band b (0: not dispersive, use `ior`);
-    // bands 0..n−1 are `wavelengths`, n..n+2 the shortcut wavelengths.
+    // The bands, one flat list. Physical mode: the sampled wavelengths. POV-Ray mode: the
+    // band sets of every distinct `samples` among the dispersive materials, one after
+    // another (a set's weights sum to POV-Ray's mean hue, about (1, 1, 1)).
+    std::vector<double> wavelengths;        // nm, per band
+    std::vector<Vec3> weights;              // RGB weight of each band in its split
+    // index[b][material]: the material's index at band b's wavelength (0: not dispersive,
+    // use `ior`); bands 0..n−1 are `wavelengths`, n..n+2 the shortcut wavelengths.
     std::vector<std::vector<double>> index;
-    std::vector<char> dispersive;           // per material: splits a ray
+    std::vector<char> dispersive;           // per material: splits an RGB ray
+    // split_bands[material]: the bands an RGB ray splits into there. Physical mode: 0..n−1
+    // for every material; POV-Ray mode: the material's own band set (empty when it does
+    // not split).
+    std::vector<std::vector<int>> split_bands;
     bool pov = false;                       // POV-Ray compat semantics
     bool clip = true;                       // cie-rgb: clip negatives at the end
     bool shortcut = false;
@@ -39,7 +50,7 @@ struct SpectralContext {
     int max_reflections = kUnlimited, max_transmissions = kUnlimited;  // unset: no limit
     const IlluminationMaps* maps = nullptr; // light pass result, read at diffuse hits
 
-    size_t bands() const { return wavelengths.size(); }
+    size_t bands() const { return wavelengths.size(); }  // n
     Vec3 finish(const Vec3& rgb) const;
 
     // Throws InputError when the spectral settings are invalid.
