@@ -112,7 +112,7 @@ void check_material(const Material& m, const Refuser& refuse) {
 // is inside; refract by the side of the surface normal it hits. They agree when the
 // transparent solids are disjoint, the camera is outside all of them, and the only
 // nesting is RTIOW's hollow sphere (a negative-radius sphere inside a sphere of the same
-// material), which is exported as one union sharing one interior.
+// material), which is exported as one intersection sharing one interior.
 
 struct Box {
     Vec3 lo, hi;
@@ -449,6 +449,11 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     o << background(s.background);
     for (const PointLight& l : s.lights) o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
 
+    bool fresnel_glass = false;  // the only rule a container changes is Fresnel at exits
+    for (const Object& obj : s.objects) {
+        const Material& m = s.materials[obj.material];
+        fresnel_glass = fresnel_glass || (m.kind == MaterialKind::Dielectric && m.reflectance == ReflectanceModel::Fresnel);
+    }
     std::set<size_t> grouped;
     for (const auto& g : groups) grouped.insert(g.begin(), g.end());
     for (size_t k = 0; k < s.objects.size(); ++k) {
@@ -463,7 +468,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         // An opaque object looks the same turned inside out, so the export inverts one that
         // contains the camera and POV-Ray's lists stay those of refract.
         const Containment c = camera_containment(sh, s.camera);
-        if (c == Containment::Across)
+        if (c == Containment::Across && fresnel_glass)
             refuse(object_where(obj), "the orthographic image plane crosses the surface of an object (POV-Ray "
                                       "starts such rays inside it and drops Fresnel reflection at glass exits)");
         o << "// " << comment_text(obj.name) << " (" << comment_text(m.name) << ")\n";
