@@ -1,4 +1,5 @@
 // refract validate [CASE...] -o DIR [--scenes DIR] [--threads N] [--list]
+// refract validate --random N [--seed S] -o DIR   (generated scenes, shrunk failures)
 // Exit status: 0 every case passed, 1 some case failed, 3 none failed but some were
 // skipped (not validated), 2 bad input.
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include "cli/commands.h"
 #include "geometry/error.h"
 #include "validation/caustics.h"
+#include "validation/random_suite.h"
 #include "validation/suite.h"
 
 namespace {
@@ -20,6 +22,11 @@ struct ValidateArgs {
     int threads = 0;
     bool list = false;
     bool caustics = false;
+    int random = -1;
+    std::uint64_t seed = 1;
+    int width = 80, height = 60;
+    bool no_dispersion = false, no_shrink = false;
+    double timeout = 60;
 };
 
 refract::cli::Registrar reg{60, [](CLI::App& app) {
@@ -32,6 +39,21 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores for refract, 2 for POV-Ray)");
     sub->add_option("--povray", args->povray, "POV-Ray executable (name on PATH or path)");
     sub->add_flag("--list", args->list, "List the cases and exit");
+    sub->add_option("--random", args->random,
+                    "Generate N random compat scenes, compare each with POV-Ray, shrink failures to minimal cases");
+    sub->add_option("--seed", args->seed, "--random: generator seed of the first scene (scene k has seed S + k)");
+    sub->add_option("--size", [args](const std::vector<std::string>& v) {
+        try {
+            args->width = std::stoi(v.at(0));
+            args->height = std::stoi(v.at(1));
+        } catch (const std::exception&) {
+            return false;
+        }
+        return args->width > 0 && args->height > 0 && args->width <= 4096 && args->height <= 4096;
+    }, "--random: image size W H (80 60)")->expected(2);
+    sub->add_flag("--no-dispersion", args->no_dispersion, "--random: no dispersive materials");
+    sub->add_flag("--no-shrink", args->no_shrink, "--random: do not shrink failures");
+    sub->add_option("--timeout", args->timeout, "--random: POV-Ray time limit per scene, seconds (60)");
     sub->add_flag("--caustics", args->caustics,
                   "Only the caustic comparison: refract light pass vs POV-Ray photons, region means and a profile");
     sub->callback([args] {
@@ -72,6 +94,30 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             return;
         }
         if (args->out_dir.empty()) throw refract::InputError("validate: -o DIR (report directory) is required");
+        if (args->random >= 0) {
+            if (args->threads < 0) throw refract::InputError("validate: --threads must be >= 0");
+            if (!(args->timeout > 0)) throw refract::InputError("validate: --timeout must be > 0");
+            if (!args->cases.empty()) throw refract::InputError("validate: --random takes no case names");
+            v::RandomOptions ro;
+            ro.count = args->random;
+            ro.seed = args->seed;
+            ro.out_dir = args->out_dir;
+            ro.scene.width = args->width;
+            ro.scene.height = args->height;
+            ro.scene.dispersion = !args->no_dispersion;
+            ro.shrink = !args->no_shrink;
+            ro.jobs = args->threads;
+            ro.povray.executable = args->povray;
+            ro.povray.timeout_seconds = args->timeout;
+            if (v::find_povray(ro.povray.executable).empty())
+                throw refract::InputError("validate: POV-Ray executable '" + ro.povray.executable + "' not found");
+            const v::RandomResult r = v::run_random(ro, &std::cerr);
+            std::cout << v::format_random(r);
+            std::cout << "report: " << args->out_dir << "/report.md" << std::endl;
+            if (r.failed > 0) std::exit(1);
+            if (r.skipped > 0) std::exit(3);
+            return;
+        }
         if (args->threads < 0) throw refract::InputError("validate: --threads must be >= 0");
         v::SuiteOptions opt;
         opt.scenes_dir = args->scenes;

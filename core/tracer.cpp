@@ -211,7 +211,9 @@ Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, doubl
     // whenever the refracted ray is spawned, even where the nominal index meets total
     // internal reflection (a constant ks); a band meeting total internal reflection there
     // (`split`) becomes a mirror ray filtered by filter·(1 − R) like the refraction (the
-    // band loop discards the TIR flag), and the reflection term is kept. A ray that is
+    // band loop discards the TIR flag), and the reflection term is kept; that mirror ray
+    // is made from the incoming ray (TraceRefractionRay → ComputeReflection), so it is
+    // not one band but a full ray that splits again at its next dispersive hit. A ray that is
     // already one band (`band`) follows the rule above with its own index.
     const Material& m = *h.material;
     const RenderSettings& s = scene_.settings;
@@ -229,6 +231,7 @@ Node SceneTracer::dielectric_node_pov(const SurfaceHit& h, const Ray& ray, doubl
         n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
         n.branch[1] = Branch{reflected, filter, filter.cwiseAbs().maxCoeff()};
         n.branches = 2;
+        n.split_mirror = true;
         return n;
     }
     if (trans > adc && !refr) {  // the refracted ray turns into total internal reflection

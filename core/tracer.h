@@ -32,6 +32,7 @@ struct Node {
     std::array<Branch, 2> branch;
     int branches = 0;          // 0: a leaf
     double reflectance = 0;    // dielectric: R used for the split (1 on TIR)
+    bool split_mirror = false; // POV-Ray dispersion split: branch[1] is a band's TIR mirror ray
 };
 
 class SceneTracer {

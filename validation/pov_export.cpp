@@ -110,7 +110,7 @@ void check_material(const Material& m, const Refuser& refuse) {
 
 // POV-Ray decides whether a refracted ray enters or leaves by the list of objects the ray
 // is inside; refract by the side of the surface normal it hits. They agree when the
-// transparent solids are disjoint, the camera is outside all of them, and the only
+// transparent solids are disjoint (the camera may be inside one), and the only
 // nesting is RTIOW's hollow sphere (a negative-radius sphere inside a sphere of the same
 // material), which is exported as one intersection sharing one interior.
 

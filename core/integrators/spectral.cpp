@@ -180,8 +180,9 @@ private:
                 const std::uint64_t before = stats_.segments;
                 const Node bn = k == bands[0] ? first : tracer_.node(h, e.ray, stats_, ctx_.index[k][mi], true);
                 std::deque<Entry> list;
-                push(e, bn.branch[1], true, list);
-                sum += ctx_.weights[k].cwiseProduct(walk(list, k));
+                push(e, bn.branch[1], !bn.split_mirror, list);
+                // A band's TIR mirror ray is a full ray (it splits again), not band k.
+                sum += ctx_.weights[k].cwiseProduct(walk(list, bn.split_mirror ? -1 : k));
                 stats_.wavelength_segments += stats_.segments - before;
             }
             return sum;
