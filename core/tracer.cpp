@@ -7,7 +7,17 @@
 
 namespace refract {
 
-SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {}
+SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {
+    // POV-Ray mode: the order of the exported scene (validation/pov_export.cpp writes the
+    // opaque objects first, then the transparent ones), which is the order in which POV-Ray
+    // tests them; this decides exact ties, e.g. a gem's facet lying in the floor plane,
+    // where POV-Ray shades the floor.
+    const bool pov = scene.settings.compat == Compat::PovRay;
+    for (int pass = pov ? 0 : 1; pass < 2; ++pass)
+        for (const Object& obj : scene.objects)
+            if (!pov || (scene.materials[obj.material].kind == MaterialKind::Dielectric) == (pass == 1))
+                order_.push_back(&obj);
+}
 
 std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& stats) const {
     ++stats.segments;
@@ -16,7 +26,8 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
     const bool pov = scene_.settings.compat == Compat::PovRay;
     const double t_min = pov ? kPovMinDepth : kEpsilon;
     double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
-    for (const Object& obj : scene_.objects) {
+    for (const Object* o : order_) {
+        const Object& obj = *o;
         const auto hit = std::visit([&](const auto& s) { return refract::intersect(s, ray, t_min, t_max); }, obj.shape);
         if (!hit) continue;
         t_max = hit->t;
@@ -91,7 +102,8 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) cons
         std::optional<Hit> best;
         const Material* best_m = nullptr;
         double t_max = remaining;
-        for (const Object& obj : scene_.objects) {
+        for (const Object* o : order_) {
+            const Object& obj = *o;
             const Material& m = scene_.materials[obj.material];
             if (m.kind == MaterialKind::Emissive) continue;
             const auto hit = std::visit(

@@ -4,6 +4,7 @@
 // nodes). Integrators differ only in how they walk the branches.
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "core/render.h"
 #include "core/scene.h"
@@ -80,6 +81,9 @@ private:
     Node dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
                              const std::optional<Vec3>& refr, bool band, bool split) const;
     const Scene& scene_;
+    // The order in which intersect() tests the objects; a hit replaces the best one only
+    // when strictly nearer, so on an exact tie (coincident surfaces) the first one wins.
+    std::vector<const Object*> order_;
 };
 
 }  // namespace refract
