@@ -71,15 +71,21 @@ Comparison compare_with_povray(const json& scene_json, const std::string& name, 
         c.reason = std::string("refract: ") + e.what();
         return c;
     }
-    try {
-        PovrayOptions po = povray;
-        po.threads = std::max(1, threads);
-        const PovrayRender pr = render_povray(pov, scene.camera.width, scene.camera.height, po);
-        c.povray = pr.image;
-        c.povray_seconds = pr.seconds;
-    } catch (const std::exception& e) {
-        c.reason = std::string("povray: ") + e.what();
-        return c;
+    // POV-Ray is run a second time when it fails: under a heavy load a run has been
+    // seen to exit with status 1 on a scene that renders on the next try.
+    for (int attempt = 0;; ++attempt) {
+        try {
+            PovrayOptions po = povray;
+            po.threads = std::max(1, threads);
+            const PovrayRender pr = render_povray(pov, scene.camera.width, scene.camera.height, po);
+            c.povray = pr.image;
+            c.povray_seconds = pr.seconds;
+            break;
+        } catch (const std::exception& e) {
+            if (attempt == 0) continue;
+            c.reason = std::string("povray: ") + e.what();
+            return c;
+        }
     }
     c.diff = compare_images(c.refract, c.povray, targets.pixel_tolerance);
     const bool pass = c.diff.fraction_over <= targets.max_fraction_over && c.diff.rmse <= targets.rmse;
