@@ -40,7 +40,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_option("--povray", args->povray, "POV-Ray executable (name on PATH or path)");
     sub->add_flag("--list", args->list, "List the cases and exit");
     sub->add_option("--random", args->random,
-                    "Generate N random compat scenes, compare each with POV-Ray, shrink failures to minimal cases");
+                    "Generate N random compat scenes, compare each with POV-Ray, shrink failures to minimal cases")
+        ->check(CLI::Range(0, 1000000));
     sub->add_option("--seed", args->seed, "--random: generator seed of the first scene (scene k has seed S + k)");
     sub->add_option("--size", [args](const std::vector<std::string>& v) {
         try {
@@ -53,7 +54,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     }, "--random: image size W H (80 60)")->expected(2);
     sub->add_flag("--no-dispersion", args->no_dispersion, "--random: no dispersive materials");
     sub->add_flag("--no-shrink", args->no_shrink, "--random: do not shrink failures");
-    sub->add_option("--timeout", args->timeout, "--random: POV-Ray time limit per scene, seconds (60)");
+    sub->add_option("--timeout", args->timeout, "--random: POV-Ray time limit per scene, seconds (60)")
+        ->check(CLI::Range(0.001, 86400.0));
     sub->add_flag("--caustics", args->caustics,
                   "Only the caustic comparison: refract light pass vs POV-Ray photons, region means and a profile");
     sub->callback([args] {
@@ -95,8 +97,10 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
         }
         if (args->out_dir.empty()) throw refract::InputError("validate: -o DIR (report directory) is required");
         if (args->random >= 0) {
-            if (args->threads < 0) throw refract::InputError("validate: --threads must be >= 0");
-            if (!(args->timeout > 0)) throw refract::InputError("validate: --timeout must be > 0");
+            if (args->threads < 0 || args->threads > 256)
+                throw refract::InputError("validate: --threads must be in [0, 256] (scenes in flight)");
+            if (!(args->timeout >= 0.001 && args->timeout <= 86400))  // also NaN
+                throw refract::InputError("validate: --timeout must be a number of seconds in [0.001, 86400]");
             if (!args->cases.empty()) throw refract::InputError("validate: --random takes no case names");
             v::RandomOptions ro;
             ro.count = args->random;

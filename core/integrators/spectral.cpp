@@ -4,6 +4,7 @@
 #include <deque>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "core/illumination_map.h"
 #include "core/spectrum/cie.h"
@@ -176,14 +177,27 @@ private:
             if (first.branches > 0) push(e, first.branch[0], false, rgb_list);
             if (first.branches < 2) return e.weight.cwiseProduct(first.local);  // nothing refracts
             Vec3 sum(0, 0, 0);
+            // A band's TIR mirror ray is a full ray (it splits again), the same for every
+            // band that meets TIR: traced once with the sum of their weights.
+            Vec3 mirror_weight(0, 0, 0);
+            std::optional<Branch> mirror;
             for (const int k : bands) {
-                const std::uint64_t before = stats_.segments;
                 const Node bn = k == bands[0] ? first : tracer_.node(h, e.ray, stats_, ctx_.index[k][mi], true);
+                if (bn.split_mirror) {
+                    mirror = bn.branch[1];
+                    mirror_weight += ctx_.weights[k];
+                    continue;
+                }
+                const std::uint64_t before = stats_.segments;
                 std::deque<Entry> list;
-                push(e, bn.branch[1], !bn.split_mirror, list);
-                // A band's TIR mirror ray is a full ray (it splits again), not band k.
-                sum += ctx_.weights[k].cwiseProduct(walk(list, bn.split_mirror ? -1 : k));
+                push(e, bn.branch[1], true, list);
+                sum += ctx_.weights[k].cwiseProduct(walk(list, k));
                 stats_.wavelength_segments += stats_.segments - before;
+            }
+            if (mirror) {
+                std::deque<Entry> list;
+                push(e, *mirror, false, list);
+                sum += mirror_weight.cwiseProduct(walk(list, -1));
             }
             return sum;
         }
