@@ -3,73 +3,17 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <deque>
 
-#include <Eigen/Dense>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "core/random.h"
+#include "core/ray_tree.h"
 
 namespace refract {
 
 namespace {
-
-std::optional<BoundingSphere> sphere_of_points(const std::vector<Vec3>& pts) {
-    if (pts.empty()) return std::nullopt;
-    Vec3 lo = pts[0], hi = pts[0];
-    for (const Vec3& p : pts) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-    }
-    const Vec3 c = 0.5 * (lo + hi);
-    double r = 0;
-    for (const Vec3& p : pts) r = std::fmax(r, (p - c).norm());
-    return BoundingSphere{c, r * (1 + 1e-9) + 1e-12};
-}
-
-}  // namespace
-
-std::optional<BoundingSphere> bounding_sphere(const Shape& shape) {
-    if (const auto* s = std::get_if<Sphere>(&shape)) return BoundingSphere{s->center, std::abs(s->radius)};
-    if (const auto* m = std::get_if<TriangleMesh>(&shape)) return sphere_of_points(m->vertices);
-    if (const auto* c = std::get_if<ConvexPolyhedron>(&shape)) {
-        // Vertices: every triple of planes meeting in a point inside all half-spaces.
-        std::vector<Vec3> v;
-        const size_t n = c->planes.size();
-        for (size_t i = 0; i < n; ++i)
-            for (size_t j = i + 1; j < n; ++j)
-                for (size_t k = j + 1; k < n; ++k) {
-                    Eigen::Matrix3d A;
-                    A.row(0) = c->planes[i].normal.transpose();
-                    A.row(1) = c->planes[j].normal.transpose();
-                    A.row(2) = c->planes[k].normal.transpose();
-                    if (std::abs(A.determinant()) < 1e-12) continue;
-                    const Vec3 p = A.partialPivLu().solve(Vec3(c->planes[i].offset, c->planes[j].offset, c->planes[k].offset));
-                    bool inside = true;
-                    for (const Plane& q : c->planes) inside = inside && q.normal.dot(p) <= q.offset + 1e-9;
-                    if (inside) v.push_back(p);
-                }
-        // A polyhedron with no vertex, or unbounded, gets no bounding sphere: the
-        // vertices found then do not enclose it, which the caller cannot detect; gems
-        // are always closed.
-        return sphere_of_points(v);
-    }
-    return std::nullopt;
-}
-
-namespace {
-
-struct Photon {
-    Ray ray;
-    Vec3 power;
-    double bailout;
-    int band;  // −1: RGB, before the first dispersive hit
-    int depth, refl, trans;
-    bool specular;  // has met a specular surface
-    double travelled;  // path length from the light to the ray's origin
-};
 
 constexpr double kFixedScale = 1099511627776.0;  // 2^40 units per unit of scaled power
 
@@ -77,6 +21,67 @@ struct Accumulator {
     std::vector<std::vector<std::atomic<std::int64_t>>> sums;  // per object, 3 per element
     double scale = 1;
 };
+
+// Where a photon's branch ends: on a diffuse surface with a map, after at least one
+// specular interaction, it is deposited; an RGB photon splits into bands at its first
+// dispersive hit, each band carrying its weight.
+struct PhotonEnds {
+    const Scene& scene;
+    const SpectralContext& ctx;
+    const IlluminationMaps& maps;
+    Accumulator& acc;
+    double dref;
+    RenderStats& stats;
+    std::uint64_t& deposits;
+
+    void background(const TreeEntry&) {}
+
+    void leaf(const TreeEntry& e, const SurfaceHit& h) {
+        if (!h.material->diffuse_surface()) return;
+        const size_t obj = static_cast<size_t>(h.object - scene.objects.data());
+        if (e.depth == 0 || !maps.by_object[obj]) return;
+        const int el = maps.by_object[obj]->element(h.hit);
+        if (el < 0) return;
+        // Irradiance counts the power arriving on the surface, whatever the angle.
+        // Point lights have no distance falloff (POV-Ray's default, and refract's
+        // direct lighting): a photon's power grows with the square of the path
+        // length, so that light passing through an index-1 object lands exactly
+        // as the direct light would.
+        const double D = e.travelled + h.hit.t;
+        const double falloff = (D * D) / (dref * dref);
+        for (int c = 0; c < 3; ++c)
+            acc.sums[obj][3 * static_cast<size_t>(el) + c].fetch_add(
+                static_cast<std::int64_t>(std::llround(e.weight[c] * falloff * acc.scale)), std::memory_order_relaxed);
+        ++deposits;
+    }
+
+    double band_ior(const TreeEntry& e, const SurfaceHit& h) const {
+        return e.band < 0 ? 0.0 : ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
+    }
+
+    bool intercept(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List& list) {
+        const size_t mi = static_cast<size_t>(h.object->material);
+        if (e.band >= 0 || !ctx.dispersive[mi]) return false;
+        // First transparent hit: one ray per band, each with the band's weight.
+        for (const int k : ctx.split_bands[mi]) {
+            const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[static_cast<size_t>(k)][mi]);
+            for (int b = 0; b < in.branches; ++b)
+                w.push(e, h, in.branch[b], b == 1, list, ctx.weights[static_cast<size_t>(k)], k);
+        }
+        return true;
+    }
+};
+
+// The illumination map each shape gets: planes (a square under the transparent objects)
+// and meshes; none for spheres and polyhedra.
+std::unique_ptr<IlluminationMap> map_for(const Plane& p, const Vec3& centre, double half, double element) {
+    return std::make_unique<IlluminationMap>(IlluminationMap::for_plane(p, centre, half, element));
+}
+std::unique_ptr<IlluminationMap> map_for(const TriangleMesh& m, const Vec3&, double, double element) {
+    return std::make_unique<IlluminationMap>(IlluminationMap::for_mesh(m, element));
+}
+std::unique_ptr<IlluminationMap> map_for(const Sphere&, const Vec3&, double, double) { return nullptr; }
+std::unique_ptr<IlluminationMap> map_for(const ConvexPolyhedron&, const Vec3&, double, double) { return nullptr; }
 
 }  // namespace
 
@@ -88,7 +93,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     // Targets: the transparent objects' bounding spheres.
     std::vector<BoundingSphere> targets;
     for (const Object& o : scene.objects)
-        if (scene.materials[o.material].kind == MaterialKind::Dielectric)
+        if (scene.materials[o.material].is<material::Dielectric>())
             if (auto b = bounding_sphere(o.shape)) targets.push_back(*b);
     maps->by_object.resize(scene.objects.size());
     if (targets.empty() || scene.lights.empty()) return maps;
@@ -99,12 +104,9 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     for (size_t k = 0; k < scene.objects.size(); ++k) {
         const Object& o = scene.objects[k];
         const Material& m = scene.materials[o.material];
-        if (m.kind != MaterialKind::Diffuse && m.kind != MaterialKind::Lambertian) continue;
-        if (const auto* p = std::get_if<Plane>(&o.shape))
-            maps->by_object[k] = std::make_unique<IlluminationMap>(
-                IlluminationMap::for_plane(*p, centre, lp.region * extent, lp.element_size));
-        else if (const auto* mesh = std::get_if<TriangleMesh>(&o.shape))
-            maps->by_object[k] = std::make_unique<IlluminationMap>(IlluminationMap::for_mesh(*mesh, lp.element_size));
+        if (!m.diffuse_surface()) continue;
+        maps->by_object[k] = std::visit([&](const auto& shape) { return map_for(shape, centre, lp.region * extent, lp.element_size); },
+                                        o.shape);
     }
     Accumulator acc;
     acc.sums.resize(scene.objects.size());
@@ -142,6 +144,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     acc.scale = max_power > 0 ? kFixedScale / max_power : 1.0;
     std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0};
     SceneTracer tracer(scene);
+    const TreeLimits limits = ctx.limits(rs);
 
     auto trace_photon = [&](const Emitter& em, std::uint64_t p, RenderStats& st, std::uint64_t& dep) {
         Rng rng(lp.seed, em.stream, p);
@@ -151,58 +154,10 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
         const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
         const Vec3 dir = (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized();
-        std::deque<Photon> list;
-        list.push_back({Ray{em.origin, dir}, em.power, 1.0, -1, 0, 0, 0, false, 0.0});
-        while (!list.empty()) {
-            const Photon ph = list.front();
-            list.pop_front();
-            const auto hit = tracer.intersect(ph.ray, st);
-            if (!hit) continue;
-            const Material& m = *hit->material;
-            const int mi = hit->object->material;
-            if (m.kind == MaterialKind::Diffuse || m.kind == MaterialKind::Lambertian) {
-                const size_t obj = static_cast<size_t>(hit->object - scene.objects.data());
-                if (!ph.specular || !maps->by_object[obj]) continue;
-                const int e = maps->by_object[obj]->element(hit->hit);
-                if (e < 0) continue;
-                // Irradiance counts the power arriving on the surface, whatever the angle.
-                // Point lights have no distance falloff (POV-Ray's default, and refract's
-                // direct lighting): a photon's power grows with the square of the path
-                // length, so that light passing through an index-1 object lands exactly
-                // as the direct light would.
-                const double D = ph.travelled + hit->hit.t;
-                const double falloff = (D * D) / (em.dref * em.dref);
-                for (int c = 0; c < 3; ++c)
-                    acc.sums[obj][3 * static_cast<size_t>(e) + c].fetch_add(
-                        static_cast<std::int64_t>(std::llround(ph.power[c] * falloff * acc.scale)),
-                        std::memory_order_relaxed);
-                ++dep;
-                continue;
-            }
-            if (m.kind == MaterialKind::Emissive) continue;
-            auto push_node = [&](const Node& n, const Vec3& tint, int band, bool only_refraction) {
-                for (int b = only_refraction ? 1 : 0; b < n.branches; ++b) {
-                    const Branch& br = n.branch[b];
-                    const double bail = ph.bailout * br.bailout_factor;
-                    if (bail <= 0 || bail < rs.pruning_threshold()) continue;
-                    const bool tr = b == 1;
-                    const int refl = ph.refl + (tr ? 0 : 1), trans = ph.trans + (tr ? 1 : 0);
-                    if (ph.depth + 1 > rs.max_depth || refl > ctx.max_reflections || trans > ctx.max_transmissions)
-                        continue;
-                    list.push_back({br.ray, ph.power.cwiseProduct(br.factor).cwiseProduct(tint), bail, band,
-                                    ph.depth + 1, refl, trans, true, ph.travelled + hit->hit.t});
-                }
-            };
-            if (ph.band < 0 && ctx.dispersive[static_cast<size_t>(mi)]) {
-                // First transparent hit: one ray per band, each with the band's weight.
-                for (const int k : ctx.split_bands[static_cast<size_t>(mi)])
-                    push_node(tracer.node(*hit, ph.ray, st, ctx.index[static_cast<size_t>(k)][static_cast<size_t>(mi)]),
-                              ctx.weights[static_cast<size_t>(k)], k, false);
-                continue;
-            }
-            const double band_ior = ph.band < 0 ? 0.0 : ctx.index[static_cast<size_t>(ph.band)][static_cast<size_t>(mi)];
-            push_node(tracer.node(*hit, ph.ray, st, band_ior), Vec3(1, 1, 1), ph.band, false);
-        }
+        PhotonEnds ends{scene, ctx, *maps, acc, em.dref, st, dep};
+        RayTreeWalker walker(tracer, limits, st);
+        RayTreeWalker::List list{TreeEntry{Ray{em.origin, dir}, em.power}};
+        walker.walk(list, ends);
     };
 
     constexpr std::uint64_t kChunk = 1024;

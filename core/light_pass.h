@@ -20,14 +20,6 @@
 
 namespace refract {
 
-// Bounding sphere (centre, radius) of a bounded shape; nullopt for planes and unbounded
-// polyhedra.
-struct BoundingSphere {
-    Vec3 centre;
-    double radius;
-};
-std::optional<BoundingSphere> bounding_sphere(const Shape& shape);
-
 // Runs the light pass with scene.settings.light_pass on `threads` threads (0: all).
 std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads = 0);
 

@@ -77,7 +77,7 @@ void validate(const Scene& scene) {
         if (scene.objects[k].material < 0 || scene.objects[k].material >= static_cast<int>(scene.materials.size()))
             throw InputError(f + ": /objects/" + std::to_string(k) + "/material: no such material");
     for (const Material& m : scene.materials)
-        if (m.kind == MaterialKind::Dielectric && !(m.ior > 0 && std::isfinite(m.ior)))
+        if (m.dielectric() && !(m.dielectric()->ior > 0 && std::isfinite(m.dielectric()->ior)))
             throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
 }
 

@@ -8,53 +8,13 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/material.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/dispersion.h"
 #include "core/spectrum/wavelengths.h"
 #include "geometry/shapes.h"
 
 namespace refract {
-
-enum class MaterialKind {
-    Diffuse,     // POV-Ray convention: ambient·pigment + Σ diffuse·pigment·light·max(0, N·L)
-    Mirror,      // perfect mirror, reflectivity `color`
-    Dielectric,  // smooth transparent interface, index `ior`, reflectance model below
-    Lambertian,  // RTIOW: random diffuse bounce with albedo `color` (stochastic integrator)
-    Metal,       // RTIOW: reflection with fuzz, albedo `color`
-    Emissive,    // highlight light: a sphere that shines `color` (tens of times brighter)
-};
-
-enum class ReflectanceModel {
-    Constant,  // Whitted: ks = constant_reflectivity, kt = 1 − ks
-    Fresnel,   // exact, natural light (Yasuda eq. 7)
-    FresnelS,  // s-polarised only
-    FresnelP,  // p-polarised only
-    Schlick,   // RTIOW approximation
-};
-
-struct Checker {
-    Vec3 color2{0, 0, 0};  // the second colour; the first is the material's `color`
-    double size = 1;       // edge of one square (3D checker as in POV-Ray)
-};
-
-struct Material {
-    std::string name;
-    MaterialKind kind = MaterialKind::Diffuse;
-    Vec3 color{1, 1, 1};             // pigment / albedo / reflectivity tint / emission
-    std::optional<Checker> checker;  // Diffuse and Lambertian only
-    double diffuse = 1.0;            // POV-Ray `diffuse`
-    double ambient = 0.0;            // POV-Ray `ambient` (Whitted's Ia term)
-    double ior = 1.5;                // Dielectric: index relative to the surrounding air
-    ReflectanceModel reflectance = ReflectanceModel::Fresnel;
-    double constant_reflectivity = 0.0;  // Constant model
-    Vec3 filter{1, 1, 1};                // Dielectric: transmitted colour per crossing
-    double fuzz = 0.0;                   // Metal
-    // Dielectric: index as a function of wavelength (catalogue name or model in the scene
-    // file); `ior` stays the nominal index (Dispersion::nominal() when `ior` is absent).
-    std::optional<spectrum::Dispersion> dispersion;
-};
-
-using Shape = std::variant<Sphere, Plane, TriangleMesh, ConvexPolyhedron>;
 
 struct Object {
     std::string name;

@@ -64,67 +64,73 @@ Background parse_background(const json& v, const std::string& file) {
     return b;
 }
 
+Pigment parse_pigment(const JsonReader& r) {
+    Pigment p;
+    p.color = r.vec3("color", p.color);
+    for (int k = 0; k < 3; ++k)
+        if (p.color[k] < 0) r.fail_at("color", "components must be >= 0");
+    if (r.has("checker")) {
+        const JsonReader c = r.child("checker");
+        c.only({"color2", "size"});
+        p.checker = Checker{c.vec3("color2", Vec3(0, 0, 0)), c.positive("size", 1.0)};
+    }
+    return p;
+}
+
+material::Dielectric parse_dielectric(const JsonReader& r, const std::string& file) {
+    r.only({"type", "ior", "reflectance", "reflectivity", "filter", "dispersion"});
+    material::Dielectric m;
+    m.ior = r.number("ior", 1.5);
+    if (!(m.ior > 0)) r.fail_at("ior", "must be > 0 (got " + std::to_string(m.ior) + ")");
+    const std::string model = r.string("reflectance", "fresnel");
+    static const std::map<std::string, ReflectanceModel> models{
+        {"constant", ReflectanceModel::Constant}, {"fresnel", ReflectanceModel::Fresnel},
+        {"fresnel-s", ReflectanceModel::FresnelS}, {"fresnel-p", ReflectanceModel::FresnelP},
+        {"schlick", ReflectanceModel::Schlick}};
+    const auto it = models.find(model);
+    if (it == models.end())
+        r.fail_at("reflectance", "unknown model '" + model + "' (constant, fresnel, fresnel-s, fresnel-p, schlick)");
+    m.reflectance = it->second;
+    if (m.reflectance == ReflectanceModel::Constant) {
+        m.constant_reflectivity = r.number("reflectivity");
+        if (m.constant_reflectivity < 0 || m.constant_reflectivity > 1) r.fail_at("reflectivity", "must be in [0, 1]");
+    } else if (r.has("reflectivity")) {
+        r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
+    }
+    m.filter = r.vec3("filter", m.filter);
+    if (r.has("dispersion")) {
+        m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
+        if (!r.has("ior")) m.ior = m.dispersion->nominal();
+    }
+    return m;
+}
+
 Material parse_material(const JsonReader& r, const std::string& name, const std::string& file) {
     Material m;
     m.name = name;
     const std::string type = r.string("type");
     if (type == "diffuse") {
         r.only({"type", "color", "checker", "diffuse", "ambient"});
-        m.kind = MaterialKind::Diffuse;
-        m.diffuse = r.number("diffuse", 1.0);
-        m.ambient = r.number("ambient", 0.0);
+        m.kind = material::Diffuse{parse_pigment(r), r.number("diffuse", 1.0), r.number("ambient", 0.0)};
     } else if (type == "lambertian") {
         r.only({"type", "color", "checker"});
-        m.kind = MaterialKind::Lambertian;
+        m.kind = material::Lambertian{parse_pigment(r)};
     } else if (type == "mirror") {
         r.only({"type", "color"});
-        m.kind = MaterialKind::Mirror;
+        m.kind = material::Mirror{parse_pigment(r).color};
     } else if (type == "metal") {
         r.only({"type", "color", "fuzz"});
-        m.kind = MaterialKind::Metal;
-        m.fuzz = r.number("fuzz", 0.0);
-        if (m.fuzz < 0 || m.fuzz > 1) r.fail_at("fuzz", "must be in [0, 1]");
+        const double fuzz = r.number("fuzz", 0.0);
+        if (fuzz < 0 || fuzz > 1) r.fail_at("fuzz", "must be in [0, 1]");
+        m.kind = material::Metal{parse_pigment(r).color, fuzz};
     } else if (type == "emissive") {
         r.only({"type", "color"});
-        m.kind = MaterialKind::Emissive;
+        m.kind = material::Emissive{parse_pigment(r).color};
     } else if (type == "dielectric") {
-        r.only({"type", "ior", "reflectance", "reflectivity", "filter", "dispersion"});
-        m.kind = MaterialKind::Dielectric;
-        m.ior = r.number("ior", 1.5);
-        if (!(m.ior > 0)) r.fail_at("ior", "must be > 0 (got " + std::to_string(m.ior) + ")");
-        const std::string model = r.string("reflectance", "fresnel");
-        static const std::map<std::string, ReflectanceModel> models{
-            {"constant", ReflectanceModel::Constant}, {"fresnel", ReflectanceModel::Fresnel},
-            {"fresnel-s", ReflectanceModel::FresnelS}, {"fresnel-p", ReflectanceModel::FresnelP},
-            {"schlick", ReflectanceModel::Schlick}};
-        const auto it = models.find(model);
-        if (it == models.end())
-            r.fail_at("reflectance", "unknown model '" + model + "' (constant, fresnel, fresnel-s, fresnel-p, schlick)");
-        m.reflectance = it->second;
-        if (m.reflectance == ReflectanceModel::Constant) {
-            m.constant_reflectivity = r.number("reflectivity");
-            if (m.constant_reflectivity < 0 || m.constant_reflectivity > 1)
-                r.fail_at("reflectivity", "must be in [0, 1]");
-        } else if (r.has("reflectivity")) {
-            r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
-        }
-        m.filter = r.vec3("filter", m.filter);
-        if (r.has("dispersion")) {
-            m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
-            if (!r.has("ior")) m.ior = m.dispersion->nominal();
-        }
-        return m;
+        m.kind = parse_dielectric(r, file);
     } else {
         r.fail_at("type", "unknown material type '" + type +
                               "' (diffuse, lambertian, mirror, metal, emissive, dielectric)");
-    }
-    m.color = r.vec3("color", m.color);
-    for (int k = 0; k < 3; ++k)
-        if (m.color[k] < 0) r.fail_at("color", "components must be >= 0");
-    if (r.has("checker")) {
-        const JsonReader c = r.child("checker");
-        c.only({"color2", "size"});
-        m.checker = Checker{c.vec3("color2", Vec3(0, 0, 0)), c.positive("size", 1.0)};
     }
     return m;
 }
@@ -377,7 +383,7 @@ Scene parse_scene(const json& j, const std::string& file) {
     }
     if (root.has("render")) s.settings = parse_settings(root.child("render"), file);
     for (const Material& m : s.materials)
-        if (m.dispersion) s.settings.spectral.enabled = true;
+        if (m.dielectric() && m.dielectric()->dispersion) s.settings.spectral.enabled = true;
     if (s.settings.light_pass.enabled) s.settings.spectral.enabled = true;  // the maps are read by the spectral pass
     return s;
 }

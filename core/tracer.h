@@ -6,35 +6,11 @@
 #include <optional>
 #include <vector>
 
+#include "core/interaction.h"
 #include "core/render.h"
 #include "core/scene.h"
 
 namespace refract {
-
-struct SurfaceHit {
-    Hit hit;
-    const Object* object = nullptr;
-    const Material* material = nullptr;
-    Vec3 normal;           // unit normal on the incident side (normal·dir < 0)
-    bool entering = true;  // the ray goes from outside to inside the object
-};
-
-// One branch of a ray-tree node: the new ray, its colour factor (reflectance,
-// transmittance × filter) and the factor the pruning threshold uses (Yasuda's
-// cumulative attenuation; POV-Ray's adc weight in compat mode).
-struct Branch {
-    Ray ray;
-    Vec3 factor;
-    double bailout_factor;
-};
-
-struct Node {
-    Vec3 local{0, 0, 0};        // light leaving the surface that needs no further ray
-    std::array<Branch, 2> branch;
-    int branches = 0;          // 0: a leaf
-    double reflectance = 0;    // dielectric: R used for the split (1 on TIR)
-    bool split_mirror = false; // POV-Ray dispersion split: branch[1] is a band's TIR mirror ray
-};
 
 class SceneTracer {
 public:
@@ -46,23 +22,25 @@ public:
     std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats) const;
     Vec3 background(const Vec3& dir) const;
 
-    // Ray-tree node at a hit: leaves (diffuse, emissive) get `local`, mirrors one branch,
-    // dielectrics two (reflection, refraction) or one on total internal reflection.
-    // `band_ior` > 0: a dielectric's index at one wavelength (spectral tracing) instead of
-    // its `ior`; the physical mode uses it for Fresnel and Snell, the POV-Ray mode for the
-    // refraction direction and the TIR test only (Fresnel keeps the nominal `ior`).
-    // `split`: POV-Ray mode, the band's share of an RGB ray splitting at its first
-    // refraction (see dielectric_node_pov).
-    Node node(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior = 0, bool split = false) const;
+    // The interaction at a hit (core/interaction.h): leaves (diffuse, emissive) end the
+    // branch, mirrors spawn one branch, dielectrics two (reflection, refraction) or one on
+    // total internal reflection. `band_ior` > 0: a dielectric's index at one wavelength
+    // (spectral tracing) instead of its `ior`; the physical mode uses it for Fresnel and
+    // Snell, the POV-Ray mode for the refraction direction and the TIR test only (Fresnel
+    // keeps the nominal `ior`). `split`: POV-Ray mode, the band's share of an RGB ray
+    // splitting at its first refraction.
+    Interaction interact(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior = 0,
+                         bool split = false) const;
 
-    // Dielectric reflectance for the material's model at cos θi and relative index eta
-    // (Constant, Fresnel, Fresnel-s, Fresnel-p, Schlick); 1 on TIR for physical models.
-    static double reflectance(const Material& m, double cos_i, double eta);
+    // The light a leaf sends back along the ray: direct lighting of a diffuse (or, in the
+    // tree integrators, Lambertian) surface, an emitter's colour; 0 for other kinds.
+    Vec3 local_light(const SurfaceHit& h, RenderStats& stats) const;
 
     // Direct lighting of an opaque surface by the point lights, POV-Ray convention:
     // ambient·pigment + Σ diffuse·pigment·light·max(0, N·L)·shadow.
-    Vec3 shade_diffuse(const SurfaceHit& h, const Material& m, RenderStats& stats) const;
-    Vec3 pigment(const Material& m, const Vec3& p) const;
+    Vec3 shade_diffuse(const SurfaceHit& h, const Pigment& pigment, double diffuse, double ambient,
+                       RenderStats& stats) const;
+    Vec3 pigment(const Pigment& p, const Vec3& point) const;
 
     static constexpr double kEpsilon = 1e-6;  // secondary rays ignore hits closer than this
 
@@ -78,8 +56,6 @@ public:
 private:
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
     Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to) const;
-    Node dielectric_node_pov(const SurfaceHit& h, const Ray& ray, double cos_i, double eta,
-                             const std::optional<Vec3>& refr, bool band, bool split) const;
     const Scene& scene_;
     // The order in which intersect() tests the objects; a hit replaces the best one only
     // when strictly nearer, so on an exact tie (coincident surfaces) the first one wins.

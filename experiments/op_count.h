@@ -54,7 +54,8 @@ struct Counted {
     friend Counted pow(Counted a, int e) { ++op_counts().sqrt; return std::pow(a.v, e); }
 };
 
-// Just what the generic laws use: Scalar, +, −, scalar·v, v/scalar, dot, squaredNorm.
+// Just what the generic laws and refract's dielectric node use: Scalar, +, −, scalar·v,
+// v/scalar, dot, squaredNorm, normalized, cwiseProduct, maxCoeff.
 template <class S>
 struct V3 {
     using Scalar = S;
@@ -74,6 +75,12 @@ struct V3 {
     }
     V3 normalized() const { return *this / norm(); }  // as Eigen: one norm, three divisions
     V3 cwiseProduct(const V3& b) const { return {x * b.x, y * b.y, z * b.z}; }
+    S maxCoeff() const {  // two comparisons, as Eigen's
+        S m = x;
+        if (y > m) m = y;
+        if (z > m) m = z;
+        return m;
+    }
 };
 
 }  // namespace refract::experiments

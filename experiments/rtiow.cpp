@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/optics.h"
+#include "core/ray_tree.h"
 #include "core/tracer.h"
 #include "experiments/common.h"
 #include "experiments/plot.h"
@@ -108,36 +109,35 @@ json convergence_scene(int spp, bool quick) {
     return j;
 }
 
+// Counts the dielectric hits at total internal reflection in every pixel's ray tree
+// (branches under 1e-4 dropped).
+struct TirCounter {
+    std::uint64_t tir = 0;
+    void background(const TreeEntry&) {}
+    void leaf(const TreeEntry&, const SurfaceHit&) {}
+    double band_ior(const TreeEntry&, const SurfaceHit&) const { return 0.0; }
+    bool intercept(RayTreeWalker&, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List&) {
+        if (const auto* d = h.material->dielectric()) {
+            const double eta = h.entering ? d->ior : 1.0 / d->ior;
+            if (!optics::refract(e.ray.dir, h.normal, eta)) ++tir;
+        }
+        return false;
+    }
+};
+
 std::uint64_t count_tir_nodes(const Scene& scene) {
     SceneTracer tracer(scene);
     RenderStats st;
-    std::uint64_t tir = 0;
-    struct Item {
-        Ray ray;
-        double w;
-        int depth;
-    };
+    TreeLimits limits = tree_limits(scene.settings);
+    limits.threshold = 1e-4;
+    RayTreeWalker walker(tracer, limits, st);
+    TirCounter counter;
     for (int j = 0; j < scene.camera.height; ++j)
         for (int i = 0; i < scene.camera.width; ++i) {
-            std::deque<Item> list{{scene.camera.ray(i + 0.5, j + 0.5), 1.0, 0}};
-            while (!list.empty()) {
-                const Item e = list.front();
-                list.pop_front();
-                const auto h = tracer.intersect(e.ray, st);
-                if (!h || h->material->kind == MaterialKind::Lambertian) continue;
-                if (h->material->kind == MaterialKind::Dielectric) {
-                    const double eta = h->entering ? h->material->ior : 1.0 / h->material->ior;
-                    if (!optics::refract(e.ray.dir, h->normal, eta)) ++tir;
-                }
-                const Node n = tracer.node(*h, e.ray, st);
-                for (int b = 0; b < n.branches; ++b) {
-                    const double w = e.w * n.branch[b].bailout_factor;
-                    if (w >= 1e-4 && e.depth + 1 <= scene.settings.max_depth)
-                        list.push_back({n.branch[b].ray, w, e.depth + 1});
-                }
-            }
+            RayTreeWalker::List list{TreeEntry{scene.camera.ray(i + 0.5, j + 0.5), Vec3(1, 1, 1)}};
+            walker.walk(list, counter);
         }
-    return tir;
+    return counter.tir;
 }
 
 void run(const ExperimentOptions& opt) {

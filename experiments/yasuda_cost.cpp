@@ -73,10 +73,11 @@ std::pair<S, S> yasuda_node(const NodeInput<S>& in, Model m) {
     return {in.w * ks, in.w * kt};  // eq. 12: the children's cumulative attenuation
 }
 
-// The same node as refract computes it: geometry/shapes.cpp (hit point, outward normal),
-// core/tracer.cpp intersect() (orientation) and node() (Heckbert refraction, reflection,
-// reflectance, branch factors), core/integrators/fresnel_tree.cpp step ⑥ (children's
-// weights). Kept in step with those files by the tests of the optics it calls.
+// The same node as refract computes it: the orientation of core/tracer.cpp intersect()
+// (outward normal from geometry/shapes.cpp), then refract's own dielectric node
+// (core/interaction.h dielectric_node: Heckbert refraction, reflection, reflectance,
+// branch factors) and the children's cumulative attenuation (attenuate, as the ray-tree
+// walker applies it), instantiated with the counting scalar.
 template <class S>
 S refract_node(const NodeInput<S>& in, Model m) {
     const V3<S> p = in.o + in.t * in.d;
@@ -84,24 +85,14 @@ S refract_node(const NodeInput<S>& in, Model m) {
     const bool entering = outward.dot(in.d) < S(0.0);
     const V3<S> N = entering ? outward : -outward;
     const S eta = entering ? in.eta : S(1.0) / in.eta;
-    using std::fmin;
-    const S cos_i = fmin(S(-in.d.dot(N)), S(1.0));
-    const auto refr = gen::refract(in.d, N, eta);
-    S R = in.ks_const;
-    if (m == Model::Fresnel) R = refr ? gen::fresnel_reflectance(cos_i, eta) : S(1.0);
-    if (m == Model::Schlick) R = refr ? (gen::cos_transmitted(cos_i, eta) ? gen::schlick(cos_i, eta) : S(1.0)) : S(1.0);
-    const V3<S> reflected = gen::reflect(in.d, N).normalized();
-    const V3<S> filter(1.0, 1.0, 1.0);
-    const V3<S> factor = (S(1.0) - R) * filter;
-    S bail = factor.x;  // maxCoeff
-    if (factor.y > bail) bail = factor.y;
-    if (factor.z > bail) bail = factor.z;
-    const V3<S> transmitted = refr->normalized();
+    const ReflectanceModel model = m == Model::Constant  ? ReflectanceModel::Constant
+                                   : m == Model::Fresnel ? ReflectanceModel::Fresnel
+                                                         : ReflectanceModel::Schlick;
+    const auto node = dielectric_node(in.d, N, eta, model, in.ks_const, V3<S>(1.0, 1.0, 1.0));
     const V3<S> weight(in.w, in.w, in.w);
-    const S bail_r = in.w * R, bail_t = in.w * bail;
-    const V3<S> w_r = weight.cwiseProduct(V3<S>(R, R, R));
-    const V3<S> w_t = weight.cwiseProduct(factor);
-    return bail_r + bail_t + w_r.x + w_t.x + reflected.x + transmitted.x;
+    const auto r = attenuate(weight, in.w, V3<S>(node.R, node.R, node.R), node.R);
+    const auto t = attenuate(weight, in.w, node.transmit_factor, node.transmit_bailout);
+    return r.bailout + t.bailout + r.weight.x + t.weight.x + node.reflected.x + node.refracted->x;
 }
 
 template <class F>
@@ -252,7 +243,7 @@ std::string run_cost(const ExperimentOptions& opt) {
     for (int m = 0; m < 3; ++m) {
         Variant& v = variants[m];
         v.scene = base;
-        Material& glass = v.scene.materials[v.scene.objects[0].material];
+        material::Dielectric& glass = *v.scene.materials[v.scene.objects[0].material].as<material::Dielectric>();
         glass.reflectance = m == 0 ? ReflectanceModel::Constant : m == 1 ? ReflectanceModel::Fresnel : ReflectanceModel::Schlick;
         glass.constant_reflectivity = 0.1;
     }
@@ -271,7 +262,7 @@ std::string run_cost(const ExperimentOptions& opt) {
             double acc = 0;
             for (int r = 0; r < reps; ++r)
                 for (const auto& x : v.local) {
-                    const Node n = tracer.node(x.hit, x.ray, st);
+                    const Interaction n = tracer.interact(x.hit, x.ray, st);
                     acc += n.reflectance + n.branch[1].ray.dir.x();
                 }
             sink = sink + acc;

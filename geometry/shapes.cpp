@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <limits>
 
+#include <Eigen/Dense>
+
 namespace refract {
 
 std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max) {
@@ -109,19 +111,102 @@ void set_bound(ConvexPolyhedron& c, const std::vector<Vec3>& vertices) {
     c.bound_radius = r * (1 + 1e-9) + 1e-12;
 }
 
-std::optional<Bounds> bounds(const Sphere& s) {
-    const double r = std::abs(s.radius);
-    return Bounds{s.center - Vec3::Constant(r), s.center + Vec3::Constant(r)};
-}
+namespace {
 
-std::optional<Bounds> bounds(const TriangleMesh& m) {
-    if (m.vertices.empty()) return std::nullopt;
-    Bounds b{m.vertices[0], m.vertices[0]};
-    for (const auto& v : m.vertices) {
+std::optional<Bounds> box_of(const std::vector<Vec3>& pts) {
+    if (pts.empty()) return std::nullopt;
+    Bounds b{pts[0], pts[0]};
+    for (const auto& v : pts) {
         b.lo = b.lo.cwiseMin(v);
         b.hi = b.hi.cwiseMax(v);
     }
     return b;
+}
+
+std::optional<BoundingSphere> sphere_of_points(const std::vector<Vec3>& pts) {
+    if (pts.empty()) return std::nullopt;
+    Vec3 lo = pts[0], hi = pts[0];
+    for (const Vec3& p : pts) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const Vec3 c = 0.5 * (lo + hi);
+    double r = 0;
+    for (const Vec3& p : pts) r = std::fmax(r, (p - c).norm());
+    return BoundingSphere{c, r * (1 + 1e-9) + 1e-12};
+}
+
+// Unbounded iff the recession cone {v : n_i·v <= 0} holds a non-zero v; such a cone has
+// an extreme ray along n_i × n_j, or all normals lie in one plane.
+bool unbounded(const ConvexPolyhedron& c) {
+    const size_t n = c.planes.size();
+    Eigen::MatrixXd N(static_cast<Eigen::Index>(n), 3);
+    for (size_t i = 0; i < n; ++i) N.row(static_cast<Eigen::Index>(i)) = c.planes[i].normal.transpose();
+    if (n < 3 || Eigen::FullPivLU<Eigen::MatrixXd>(N).rank() < 3) return true;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j) {
+            const Vec3 v = c.planes[i].normal.cross(c.planes[j].normal);
+            if (v.norm() < 1e-12) continue;
+            for (const Vec3& d : {Vec3(v.normalized()), Vec3(-v.normalized())}) {
+                bool in_cone = true;
+                for (const Plane& p : c.planes) in_cone = in_cone && p.normal.dot(d) <= 1e-12;
+                if (in_cone) return true;
+            }
+        }
+    return false;
+}
+
+}  // namespace
+
+std::optional<Hit> intersect(const Shape& s, const Ray& r, double t_min, double t_max) {
+    return std::visit([&](const auto& x) { return intersect(x, r, t_min, t_max); }, s);
+}
+
+std::optional<Bounds> bounds(const Sphere& s) {
+    const double r = std::abs(s.radius);
+    return Bounds{s.center - Vec3::Constant(r), s.center + Vec3::Constant(r)};
+}
+std::optional<Bounds> bounds(const Plane&) { return std::nullopt; }  // a half-space
+std::optional<Bounds> bounds(const TriangleMesh& m) { return box_of(m.vertices); }
+std::optional<Bounds> bounds(const ConvexPolyhedron& c) { return box_of(vertices(c)); }
+std::optional<Bounds> bounds(const Shape& s) {
+    return std::visit([](const auto& x) { return bounds(x); }, s);
+}
+
+std::optional<BoundingSphere> bounding_sphere(const Sphere& s) { return BoundingSphere{s.center, std::abs(s.radius)}; }
+std::optional<BoundingSphere> bounding_sphere(const Plane&) { return std::nullopt; }
+std::optional<BoundingSphere> bounding_sphere(const TriangleMesh& m) { return sphere_of_points(m.vertices); }
+std::optional<BoundingSphere> bounding_sphere(const ConvexPolyhedron& c) { return sphere_of_points(vertices(c)); }
+std::optional<BoundingSphere> bounding_sphere(const Shape& s) {
+    return std::visit([](const auto& x) { return bounding_sphere(x); }, s);
+}
+
+std::vector<Vec3> vertices(const Sphere&) { return {}; }
+std::vector<Vec3> vertices(const Plane&) { return {}; }
+std::vector<Vec3> vertices(const TriangleMesh& m) { return m.vertices; }
+std::vector<Vec3> vertices(const ConvexPolyhedron& c) {
+    // Every triple of planes meeting in a point inside all half-spaces; none when the
+    // polyhedron is unbounded.
+    std::vector<Vec3> v;
+    if (unbounded(c)) return v;
+    const size_t n = c.planes.size();
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            for (size_t k = j + 1; k < n; ++k) {
+                Eigen::Matrix3d A;
+                A.row(0) = c.planes[i].normal.transpose();
+                A.row(1) = c.planes[j].normal.transpose();
+                A.row(2) = c.planes[k].normal.transpose();
+                if (std::abs(A.determinant()) < 1e-12) continue;
+                const Vec3 p = A.partialPivLu().solve(Vec3(c.planes[i].offset, c.planes[j].offset, c.planes[k].offset));
+                bool inside = true;
+                for (const Plane& q : c.planes) inside = inside && q.normal.dot(p) <= q.offset + 1e-9;
+                if (inside) v.push_back(p);
+            }
+    return v;
+}
+std::vector<Vec3> vertices(const Shape& s) {
+    return std::visit([](const auto& x) { return vertices(x); }, s);
 }
 
 }  // namespace refract

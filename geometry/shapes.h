@@ -4,6 +4,7 @@
 // negative radius the outward normal points to the centre: RTIOW's hollow sphere).
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "geometry/ray.h"
@@ -47,16 +48,45 @@ struct ConvexPolyhedron {
 // Bounding sphere of a convex polyhedron from its vertices (the builder knows them).
 void set_bound(ConvexPolyhedron& c, const std::vector<Vec3>& vertices);
 
+// Every shape has the full set of operations below, one overload per shape; the
+// Shape-level functions dispatch with std::visit, so a shape missing one fails to compile.
+using Shape = std::variant<Sphere, Plane, TriangleMesh, ConvexPolyhedron>;
+
 std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);
+std::optional<Hit> intersect(const Shape& s, const Ray& r, double t_min, double t_max);
 
 // Axis-aligned bounds (used for culling and for export); empty optional when unbounded.
 struct Bounds {
     Vec3 lo, hi;
 };
 std::optional<Bounds> bounds(const Sphere& s);
+std::optional<Bounds> bounds(const Plane& p);
 std::optional<Bounds> bounds(const TriangleMesh& m);
+std::optional<Bounds> bounds(const ConvexPolyhedron& c);
+std::optional<Bounds> bounds(const Shape& s);
+
+// A sphere enclosing the shape (the light pass aims its photons at it); empty when the
+// shape is unbounded.
+struct BoundingSphere {
+    Vec3 centre;
+    double radius;
+};
+std::optional<BoundingSphere> bounding_sphere(const Sphere& s);
+std::optional<BoundingSphere> bounding_sphere(const Plane& p);
+std::optional<BoundingSphere> bounding_sphere(const TriangleMesh& m);
+std::optional<BoundingSphere> bounding_sphere(const ConvexPolyhedron& c);
+std::optional<BoundingSphere> bounding_sphere(const Shape& s);
+
+// Corner points (for export and bounds): the mesh's vertices, the polyhedron's vertices
+// (every triple of planes meeting in a point inside all half-spaces); none for a sphere
+// or a plane.
+std::vector<Vec3> vertices(const Sphere& s);
+std::vector<Vec3> vertices(const Plane& p);
+std::vector<Vec3> vertices(const TriangleMesh& m);
+std::vector<Vec3> vertices(const ConvexPolyhedron& c);
+std::vector<Vec3> vertices(const Shape& s);
 
 }  // namespace refract

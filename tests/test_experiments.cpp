@@ -134,7 +134,7 @@ TEST_CASE("Yasuda driver (quick) writes its CSV, figures, renders, scenes and su
     for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find(".tmp-") == std::string::npos);
     // The scene files re-render with `refract render`.
     const Scene s = load_scene((d / "scenes/fig8_j.json").string());
-    CHECK(s.materials.at(s.objects.at(0).material).ior == 10.0);
+    CHECK(s.materials.at(s.objects.at(0).material).dielectric()->ior == 10.0);
     CHECK(read_text(d / "summary.md").find("## Cost of Fresnel reflectance") != std::string::npos);
 }
 
@@ -214,7 +214,7 @@ TEST_CASE("RTIOW: the scene is mirrored in z so the glass sphere appears on the 
     const Ray left = s.camera.ray(s.camera.width * 0.15, s.camera.height * 0.5);
     bool hits_glass = false;
     for (const auto& o : s.objects)
-        if (s.materials[o.material].kind == MaterialKind::Dielectric)
+        if (s.materials[o.material].is<material::Dielectric>())
             hits_glass |= intersect(std::get<Sphere>(o.shape), left, 1e-6, 1e9).has_value();
     CHECK(hits_glass);
 }

@@ -162,7 +162,7 @@ TEST_CASE("Random scenes 0-299 parse, export to POV-Ray (100 %) and cover every 
         if (scene.background.kind == Background::Kind::Gradient) ++count["gradient background"];
         for (const Object& o : scene.objects) {
             const auto* s = std::get_if<Sphere>(&o.shape);
-            if (s && s->radius > 0 && scene.materials[o.material].kind != MaterialKind::Dielectric &&
+            if (s && s->radius > 0 && !scene.materials[o.material].is<material::Dielectric>() &&
                 (scene.camera.location - s->center).norm() < s->radius) {
                 ++count["camera inside an opaque sphere"];
                 break;
@@ -198,6 +198,6 @@ TEST_CASE("Random scene without dispersion has no dispersive material anywhere",
         if (seed >= 100) continue;  // parsing (exact brilliants) is the slow part
         const Scene scene = parse_scene(j, "random-" + std::to_string(seed));
         CHECK_FALSE(scene.settings.spectral.enabled);
-        for (const Material& m : scene.materials) CHECK_FALSE(m.dispersion.has_value());
+        for (const Material& m : scene.materials) CHECK_FALSE((m.dielectric() && m.dielectric()->dispersion.has_value()));
     }
 }

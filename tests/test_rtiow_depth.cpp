@@ -26,11 +26,10 @@ Scene rtiow_glass(int max_depth) {
     s.camera.angle_deg = 40;
     s.camera.width = 24;
     s.camera.height = 16;
-    Material glass;
-    glass.kind = MaterialKind::Dielectric;
+    material::Dielectric glass;
     glass.ior = 1.5;
     glass.reflectance = ReflectanceModel::Schlick;
-    s.materials.push_back(glass);
+    s.materials.push_back({"glass", glass});
     s.objects.push_back({"hollow", Sphere{Vec3(-0.55, 0, 0), 0.5}, 0});
     s.objects.push_back({"bubble", Sphere{Vec3(-0.55, 0, 0), -0.4}, 0});
     s.objects.push_back({"solid", Sphere{Vec3(0.55, 0, 0), 0.5}, 0});
@@ -48,7 +47,7 @@ Vec3 book_ray_color(const SceneTracer& t, const Ray& r, int depth, Rng& rng, Ren
     if (depth <= 0) return Vec3(0, 0, 0);
     const auto hit = t.intersect(r, st);
     if (!hit) return t.background(r.dir);
-    const Node n = t.node(*hit, r, st);
+    const Interaction n = t.interact(*hit, r, st);
     const bool reflect = n.branches == 1 || rng.uniform() < n.reflectance;
     const Ray scattered{hit->hit.point, n.branch[reflect ? 0 : 1].ray.dir.normalized()};
     return book_ray_color(t, scattered, depth - 1, rng, st);
@@ -85,7 +84,7 @@ TEST_CASE("RTIOW depth: the stochastic integrator's mean equals the Fresnel tree
     // tree's value is the expectation of the stochastic choice (RTIOW's reflect with
     // probability R). Depth 2 makes an off-by-one visible: some paths need a third ray.
     Scene s = rtiow_glass(2);
-    s.materials[0].reflectance = ReflectanceModel::Fresnel;
+    s.materials[0].as<material::Dielectric>()->reflectance = ReflectanceModel::Fresnel;
     const SceneTracer tracer(s);
     Scene tree_scene = s;
     tree_scene.settings.integrator = IntegratorKind::FresnelTree;
@@ -122,13 +121,7 @@ TEST_CASE("Depth limit: the ray after the last bounce still shows an emissive su
     Scene s = rtiow_glass(0);
     s.objects.clear();
     s.materials.clear();
-    Material mirror;
-    mirror.kind = MaterialKind::Mirror;
-    mirror.color = Vec3(0.5, 0.6, 0.7);
-    Material lamp;
-    lamp.kind = MaterialKind::Emissive;
-    lamp.color = Vec3(3, 2, 1);
-    s.materials = {mirror, lamp};
+    s.materials = {{"mirror", material::Mirror{Vec3(0.5, 0.6, 0.7)}}, {"lamp", material::Emissive{Vec3(3, 2, 1)}}};
     s.objects.push_back({"mirror", Sphere{Vec3(0, 0, 0), 0.8}, 0});
     s.objects.push_back({"lamp", Sphere{Vec3(0, 0, -6), 2.5}, 1});
     s.background.kind = Background::Kind::Solid;

@@ -43,7 +43,7 @@ TEST_CASE("A valid scene file parses into the scene it describes", "[scene]") {
     const Scene s = parse_scene(nlohmann::json::parse(kGood), "s.json");
     CHECK(s.camera.width == 8);
     CHECK(s.objects.size() == 1);
-    CHECK(s.materials.at(0).ior == 1.5);
+    CHECK(s.materials.at(0).dielectric()->ior == 1.5);
     CHECK(std::get<Sphere>(s.objects[0].shape).radius == 1.0);
 }
 

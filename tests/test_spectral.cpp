@@ -87,11 +87,13 @@ TEST_CASE("Per-wavelength Fresnel uses the band's index (physical) and the nomin
     const Ray ray{Vec3(0.5, 0.8, -3), Vec3(0, 0, 1)};  // off-axis: cos θi = 0.78
     const auto hit = tracer.intersect(ray, st);
     REQUIRE(hit);
-    REQUIRE(hit->material->dispersion);
+    const auto* glass = hit->material->dielectric();
+    REQUIRE(glass);
+    REQUIRE(glass->dispersion);
     const double cos_i = -ray.dir.dot(hit->normal);
-    const double n450 = hit->material->dispersion->n(450), n650 = hit->material->dispersion->n(650);
+    const double n450 = glass->dispersion->n(450), n650 = glass->dispersion->n(650);
     CHECK(n450 - n650 > 0.02);  // diamond's dispersion
-    const Node blue = tracer.node(*hit, ray, st, n450), red = tracer.node(*hit, ray, st, n650);
+    const Interaction blue = tracer.interact(*hit, ray, st, n450), red = tracer.interact(*hit, ray, st, n650);
     CHECK(blue.reflectance == Approx(optics::fresnel_reflectance(cos_i, n450)).epsilon(1e-14));
     CHECK(red.reflectance == Approx(optics::fresnel_reflectance(cos_i, n650)).epsilon(1e-14));
     CHECK(blue.reflectance > red.reflectance + 1e-3);
@@ -105,9 +107,9 @@ TEST_CASE("Per-wavelength Fresnel uses the band's index (physical) and the nomin
     Scene pov = s;
     pov.settings.compat = Compat::PovRay;
     SceneTracer ptracer(pov);
-    const Node pblue = ptracer.node(*hit, ray, st, n450);
+    const Interaction pblue = ptracer.interact(*hit, ray, st, n450);
     CHECK(pblue.reflectance ==
-          Approx(optics::fresnel_reflectance(cos_i, static_cast<float>(hit->material->ior))).epsilon(1e-14));
+          Approx(optics::fresnel_reflectance(cos_i, static_cast<float>(glass->ior))).epsilon(1e-14));
 }
 
 TEST_CASE("Dispersion: ior absent takes the model's nominal index; an explicit ior stays", "[spectral]") {
@@ -115,8 +117,8 @@ TEST_CASE("Dispersion: ior absent takes the model's nominal index; an explicit i
         "materials": {"a": {"type": "dielectric", "dispersion": "diamond"},
                       "b": {"type": "dielectric", "ior": 2.4, "dispersion": "diamond"}}})");
     const Scene s = parse_scene(j, "t.json");
-    CHECK(s.materials[0].ior == spectrum::catalogue("diamond").nominal());
-    CHECK(s.materials[1].ior == 2.4);
+    CHECK(s.materials[0].dielectric()->ior == spectrum::catalogue("diamond").nominal());
+    CHECK(s.materials[1].dielectric()->ior == 2.4);
     CHECK(s.settings.spectral.enabled);
     CHECK_THROWS_WITH(parse_scene(nlohmann::json::parse(R"({"camera": {}, "objects": [],
         "render": {"spectral": {"step": 7}}})"), "t.json"), Catch::Contains("t.json: /render/spectral"));
@@ -212,7 +214,7 @@ TEST_CASE("Ohtsuka driver (quick) writes images, tables and studies; the shortcu
     CHECK(std::stod(thr.rows[5][3]) > 1.0);
     const Scene s = load_scene((d / "scene.json").string());
     CHECK(s.settings.spectral.max_reflections.value_or(0) == 8);
-    CHECK(s.materials.at(s.objects.at(1).material).dispersion->label.find("iamond") != std::string::npos);
+    CHECK(s.materials.at(s.objects.at(1).material).dielectric()->dispersion->label.find("iamond") != std::string::npos);
     fs::remove_all(d);
 }
 

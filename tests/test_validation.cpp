@@ -149,7 +149,7 @@ TEST_CASE("POV-Ray export refuses what POV-Ray cannot express", "[validation]") 
                Contains("polarised"));
     {
         Scene s = scene_from(g);
-        s.materials[1].dispersion = spectrum::catalogue("BK7");
+        s.materials[1].as<material::Dielectric>()->dispersion = spectrum::catalogue("BK7");
         CHECK_THROWS_WITH(export_pov(s), Contains("dispersion"));
     }
     CHECK_THAT(refusal(with(g, R"("ior": 1.5, "filter")", R"("ior": 1, "filter")")), Contains("ior 1"));
@@ -283,7 +283,7 @@ TEST_CASE("POV-Ray compat mode: refraction adc weight is parent x max(filter x (
     const Ray ray{Vec3(0, 1, -5), Vec3(0, 0, 1)};
     SurfaceHit h{Hit{4, Vec3(0, 1, -1), Vec3(0, 0, -1), -1}, &s.objects[1], &glass, Vec3(0, 0, -1), true};
     RenderStats st;
-    const Node n = tracer.node(h, ray, st);
+    const Interaction n = tracer.interact(h, ray, st);
     const double R = optics::fresnel_reflectance(1.0, 1.5);  // 0.04
     REQUIRE(n.branches == 2);
     CHECK(n.branch[0].bailout_factor == Approx(R));
@@ -302,7 +302,7 @@ TEST_CASE("POV-Ray compat mode: total internal reflection with a constant ks car
     const Ray ray{Vec3(0, 0, 0), Vec3(std::sin(a), 0, std::cos(a))};
     SurfaceHit h{Hit{1, Vec3(std::sin(a), 0, std::cos(a)), Vec3(0, 0, 1), -1}, &s.objects[2], &ks, Vec3(0, 0, -1), false};
     RenderStats st;
-    const Node n = tracer.node(h, ray, st);
+    const Interaction n = tracer.interact(h, ray, st);
     REQUIRE(n.branches == 1);
     CHECK(n.branch[0].factor == Vec3(1, 1, 1));
     CHECK(n.branch[0].bailout_factor == Approx(0.7));
@@ -325,7 +325,7 @@ TEST_CASE("Reflected rays stay unit length through 50 internal reflections in a 
         const double c = -ray.dir.dot(h->normal);
         if (!first_cos) first_cos = c;
         CHECK(c == Approx(*first_cos).margin(1e-12));  // a sphere keeps the chord angle
-        ray = tracer.node(*h, ray, st).branch[0].ray;
+        ray = tracer.interact(*h, ray, st).branch[0].ray;
         CHECK(std::abs(ray.dir.norm() - 1.0) < 1e-15);
     }
 }

@@ -77,33 +77,33 @@ void check_settings(const Scene& s, const Refuser& refuse, bool photons) {
                                         " needs max_trace_level " + std::to_string(r.max_depth + 1) + " > 256");
 }
 
+// What POV-Ray cannot express, per material kind.
+void check(const material::Diffuse&, const Material&, const Refuser&) {}
+void check(const material::Mirror&, const Material&, const Refuser&) {}
+void check(const material::Emissive&, const Material&, const Refuser&) {}
+void check(const material::Lambertian&, const Material& m, const Refuser& refuse) {
+    refuse(material_where(m), "a lambertian material scatters randomly (path tracing)");
+}
+void check(const material::Metal& k, const Material& m, const Refuser& refuse) {
+    if (k.fuzz != 0) refuse(material_where(m), "metal with fuzz " + pov_number(k.fuzz) + " scatters randomly (path tracing)");
+}
+void check(const material::Dielectric& k, const Material& m, const Refuser& refuse) {
+    if (k.dispersion && k.dispersion->dispersive() && !k.dispersion->is_povray())
+        refuse(material_where(m), "dispersion '" + comment_text(k.dispersion->label) +
+                                      "' (POV-Ray's law is n·D^((555 − λ)/350): only the \"povray\" model exports)");
+    if (k.reflectance == ReflectanceModel::Schlick)
+        refuse(material_where(m), "reflectance 'schlick' (POV-Ray has exact unpolarised Fresnel only)");
+    if (k.reflectance == ReflectanceModel::FresnelS || k.reflectance == ReflectanceModel::FresnelP)
+        refuse(material_where(m), "a polarised reflectance (POV-Ray has unpolarised Fresnel only)");
+    // POV-Ray stores the index in single precision and passes an interface of
+    // index 1.0f straight on without counting a trace level (trace.cpp, continuedRay).
+    if (static_cast<float>(k.ior) == 1.0f)
+        refuse(material_where(m), "ior 1 in single precision (POV-Ray passes such an interface without counting a trace level)");
+    for (int c = 0; c < 3; ++c)
+        if (k.filter[c] < 0) refuse(material_where(m), "a negative filter component");
+}
 void check_material(const Material& m, const Refuser& refuse) {
-    switch (m.kind) {
-        case MaterialKind::Diffuse:
-        case MaterialKind::Mirror:
-        case MaterialKind::Emissive: return;
-        case MaterialKind::Lambertian:
-            refuse(material_where(m), "a lambertian material scatters randomly (path tracing)");
-        case MaterialKind::Metal:
-            if (m.fuzz != 0)
-                refuse(material_where(m), "metal with fuzz " + pov_number(m.fuzz) + " scatters randomly (path tracing)");
-            return;
-        case MaterialKind::Dielectric:
-            if (m.dispersion && m.dispersion->dispersive() && !m.dispersion->is_povray())
-                refuse(material_where(m), "dispersion '" + comment_text(m.dispersion->label) +
-                                              "' (POV-Ray's law is n·D^((555 − λ)/350): only the \"povray\" model exports)");
-            if (m.reflectance == ReflectanceModel::Schlick)
-                refuse(material_where(m), "reflectance 'schlick' (POV-Ray has exact unpolarised Fresnel only)");
-            if (m.reflectance == ReflectanceModel::FresnelS || m.reflectance == ReflectanceModel::FresnelP)
-                refuse(material_where(m), "a polarised reflectance (POV-Ray has unpolarised Fresnel only)");
-            // POV-Ray stores the index in single precision and passes an interface of
-            // index 1.0f straight on without counting a trace level (trace.cpp, continuedRay).
-            if (static_cast<float>(m.ior) == 1.0f)
-                refuse(material_where(m), "ior 1 in single precision (POV-Ray passes such an interface without counting a trace level)");
-            for (int c = 0; c < 3; ++c)
-                if (m.filter[c] < 0) refuse(material_where(m), "a negative filter component");
-            return;
-    }
+    std::visit([&](const auto& kind) { check(kind, m, refuse); }, m.kind);
 }
 
 // ---- geometry checks for transparent objects -----------------------------------------
@@ -124,64 +124,10 @@ bool overlap(const Box& a, const Box& b) {
     return true;
 }
 
-// Vertices of a convex polyhedron n_i·x <= d_i (every triple of planes), or empty
-// optional when it is unbounded.
-std::optional<std::vector<Vec3>> polyhedron_vertices(const ConvexPolyhedron& c) {
-    const size_t n = c.planes.size();
-    // Unbounded iff the recession cone {v : n_i·v <= 0} holds a non-zero v; such a cone
-    // has an extreme ray along n_i × n_j, or all normals lie in one plane.
-    Eigen::MatrixXd N(static_cast<Eigen::Index>(n), 3);
-    for (size_t i = 0; i < n; ++i) N.row(static_cast<Eigen::Index>(i)) = c.planes[i].normal.transpose();
-    if (Eigen::FullPivLU<Eigen::MatrixXd>(N).rank() < 3) return std::nullopt;
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j) {
-            const Vec3 v = c.planes[i].normal.cross(c.planes[j].normal);
-            if (v.norm() < 1e-12) continue;
-            for (const Vec3& d : {Vec3(v.normalized()), Vec3(-v.normalized())}) {
-                bool in_cone = true;
-                for (const Plane& p : c.planes) in_cone = in_cone && p.normal.dot(d) <= 1e-12;
-                if (in_cone) return std::nullopt;
-            }
-        }
-    std::vector<Vec3> verts;
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j)
-            for (size_t k = j + 1; k < n; ++k) {
-                Eigen::Matrix3d A;
-                A.row(0) = c.planes[i].normal.transpose();
-                A.row(1) = c.planes[j].normal.transpose();
-                A.row(2) = c.planes[k].normal.transpose();
-                if (std::abs(A.determinant()) < 1e-12) continue;
-                const Vec3 x = A.fullPivLu().solve(Vec3(c.planes[i].offset, c.planes[j].offset, c.planes[k].offset));
-                bool inside = true;
-                for (const Plane& p : c.planes)
-                    inside = inside && p.normal.dot(x) <= p.offset + 1e-9 * (1.0 + std::abs(p.offset));
-                if (inside) verts.push_back(x);
-            }
-    return verts;
-}
-
 std::optional<Box> object_box(const Shape& shape) {
-    if (const auto* s = std::get_if<Sphere>(&shape)) {
-        const double r = std::abs(s->radius);
-        return Box{s->center - Vec3::Constant(r), s->center + Vec3::Constant(r)};
-    }
-    if (const auto* m = std::get_if<TriangleMesh>(&shape)) {
-        const auto b = bounds(*m);
-        if (!b) return std::nullopt;
-        return Box{b->lo, b->hi};
-    }
-    if (const auto* c = std::get_if<ConvexPolyhedron>(&shape)) {
-        const auto v = polyhedron_vertices(*c);
-        if (!v || v->empty()) return std::nullopt;
-        Box b{(*v)[0], (*v)[0]};
-        for (const Vec3& p : *v) {
-            b.lo = b.lo.cwiseMin(p);
-            b.hi = b.hi.cwiseMax(p);
-        }
-        return b;
-    }
-    return std::nullopt;  // plane: a half-space
+    const auto b = bounds(shape);  // geometry/shapes.h: none for planes and unbounded polyhedra
+    if (!b) return std::nullopt;
+    return Box{b->lo, b->hi};
 }
 
 // Closed and consistently wound counter-clockwise seen from outside: every directed edge
@@ -204,15 +150,16 @@ bool mesh_is_closed_outward(const TriangleMesh& m) {
 // POV-Ray 3.7's inside test of an exported opaque object (Inside_BBox and Object::Inside):
 // strictly inside a sphere, on the negative side of a plane, inside every plane of an
 // intersection; never inside a mesh2 without inside_vector (opaque meshes have none).
+bool pov_inside(const Sphere& s, const Vec3& p) { return (p - s.center).squaredNorm() < s.radius * s.radius; }
+bool pov_inside(const Plane& pl, const Vec3& p) { return pl.normal.dot(p) - pl.offset < 0; }
+bool pov_inside(const TriangleMesh&, const Vec3&) { return false; }
+bool pov_inside(const ConvexPolyhedron& c, const Vec3& p) {
+    for (const Plane& q : c.planes)
+        if (!(q.normal.dot(p) - q.offset < 0)) return false;
+    return true;
+}
 bool pov_inside(const Shape& shape, const Vec3& p) {
-    if (const auto* s = std::get_if<Sphere>(&shape)) return (p - s->center).squaredNorm() < s->radius * s->radius;
-    if (const auto* pl = std::get_if<Plane>(&shape)) return pl->normal.dot(p) - pl->offset < 0;
-    if (const auto* c = std::get_if<ConvexPolyhedron>(&shape)) {
-        for (const Plane& q : c->planes)
-            if (!(q.normal.dot(p) - q.offset < 0)) return false;
-        return true;
-    }
-    return false;
+    return std::visit([&](const auto& s) { return pov_inside(s, p); }, shape);
 }
 
 // Where the camera's rays start relative to an opaque object, by POV-Ray's inside test:
@@ -254,7 +201,7 @@ Containment camera_containment(const Shape& shape, const Camera& cam) {
     return overlap(rect, *box) ? Containment::Across : Containment::Outside;
 }
 
-bool same_dispersion(const Material& a, const Material& b) {
+bool same_dispersion(const material::Dielectric& a, const material::Dielectric& b) {
     if (a.dispersion.has_value() != b.dispersion.has_value()) return false;
     if (!a.dispersion) return true;
     for (double l : {400.0, 550.0, 700.0})
@@ -262,8 +209,8 @@ bool same_dispersion(const Material& a, const Material& b) {
     return a.dispersion->label == b.dispersion->label;
 }
 
-bool same_optics(const Material& a, const Material& b) {
-    return a.kind == b.kind && a.ior == b.ior && a.filter == b.filter && a.reflectance == b.reflectance &&
+bool same_optics(const material::Dielectric& a, const material::Dielectric& b) {
+    return a.ior == b.ior && a.filter == b.filter && a.reflectance == b.reflectance &&
            a.constant_reflectivity == b.constant_reflectivity && same_dispersion(a, b);
 }
 
@@ -273,7 +220,7 @@ std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser
     std::vector<size_t> solids, holes;
     for (size_t k = 0; k < s.objects.size(); ++k) {
         const Object& o = s.objects[k];
-        if (s.materials[o.material].kind != MaterialKind::Dielectric) continue;
+        if (!s.materials[o.material].is<material::Dielectric>()) continue;
         const auto* sp = std::get_if<Sphere>(&o.shape);
         (sp && sp->radius < 0 ? holes : solids).push_back(k);
         if (const auto* m = std::get_if<TriangleMesh>(&o.shape))
@@ -309,7 +256,7 @@ std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser
         for (auto& g : groups) {
             const Object& O = s.objects[g[0]];
             const auto* os = std::get_if<Sphere>(&O.shape);
-            if (!os || !same_optics(s.materials[O.material], s.materials[H.material])) continue;
+            if (!os || !same_optics(*s.materials[O.material].dielectric(), *s.materials[H.material].dielectric())) continue;
             if ((hs.center - os->center).norm() - hs.radius >= os->radius) continue;  // hs.radius < 0
             for (size_t other = 1; other < g.size(); ++other) {
                 const Sphere& q = std::get<Sphere>(s.objects[g[other]].shape);
@@ -329,43 +276,45 @@ std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser
 
 // ---- statements -------------------------------------------------------------------
 
-std::string texture(const Material& m) {
+// The texture of each material kind (the Lambertian is refused earlier).
+std::string texture_of(const material::Diffuse& m) {
     std::ostringstream t;
-    t << "texture { ";
-    switch (m.kind) {
-        case MaterialKind::Diffuse:
-            if (m.checker)
-                t << "pigment { checker rgb " << vec(m.color) << " rgb " << vec(m.checker->color2) << " scale "
-                  << pov_number(m.checker->size) << " } ";
-            else
-                t << "pigment { rgb " << vec(m.color) << " } ";
-            t << "finish { ambient " << pov_number(m.ambient) << " emission 0 diffuse " << pov_number(m.diffuse) << " }";
-            break;
-        case MaterialKind::Mirror:
-        case MaterialKind::Metal:  // fuzz 0: a tinted mirror
-            t << "pigment { rgb 0 } finish { ambient 0 emission 0 diffuse 0 reflection { rgb " << vec(m.color) << " } }";
-            break;
-        case MaterialKind::Emissive:
-            t << "pigment { rgb " << vec(m.color) << " } finish { ambient 0 emission 1 diffuse 0 }";
-            break;
-        case MaterialKind::Dielectric:
-            // rgbf <filter, 1>: transmitted light × filter, no surface colour of its own.
-            // conserve_energy: the transmitted part is also × (1 − reflectivity).
-            t << "pigment { rgbf <" << pov_number(m.filter.x()) << ", " << pov_number(m.filter.y()) << ", "
-              << pov_number(m.filter.z()) << ", 1> } finish { ambient 0 emission 0 diffuse 0 reflection { ";
-            if (m.reflectance == ReflectanceModel::Constant)
-                t << pov_number(m.constant_reflectivity);  // Whitted: ks constant, kt = 1 − ks
-            else
-                t << "0, 1 fresnel on";  // exact unpolarised Fresnel
-            t << " } conserve_energy }";
-            break;
-        case MaterialKind::Lambertian: break;  // refused earlier
-    }
-    t << " }";
+    if (m.pigment.checker)
+        t << "pigment { checker rgb " << vec(m.pigment.color) << " rgb " << vec(m.pigment.checker->color2) << " scale "
+          << pov_number(m.pigment.checker->size) << " } ";
+    else
+        t << "pigment { rgb " << vec(m.pigment.color) << " } ";
+    t << "finish { ambient " << pov_number(m.ambient) << " emission 0 diffuse " << pov_number(m.diffuse) << " }";
+    return t.str();
+}
+std::string texture_of(const material::Lambertian&) { return ""; }
+std::string mirror_texture(const Vec3& color) {
+    return "pigment { rgb 0 } finish { ambient 0 emission 0 diffuse 0 reflection { rgb " + vec(color) + " } }";
+}
+std::string texture_of(const material::Mirror& m) { return mirror_texture(m.color); }
+std::string texture_of(const material::Metal& m) { return mirror_texture(m.color); }  // fuzz 0: a tinted mirror
+std::string texture_of(const material::Emissive& m) {
+    return "pigment { rgb " + vec(m.color) + " } finish { ambient 0 emission 1 diffuse 0 }";
+}
+std::string texture_of(const material::Dielectric& m) {
+    // rgbf <filter, 1>: transmitted light × filter, no surface colour of its own.
+    // conserve_energy: the transmitted part is also × (1 − reflectivity).
+    std::ostringstream t;
+    t << "pigment { rgbf <" << pov_number(m.filter.x()) << ", " << pov_number(m.filter.y()) << ", "
+      << pov_number(m.filter.z()) << ", 1> } finish { ambient 0 emission 0 diffuse 0 reflection { ";
+    if (m.reflectance == ReflectanceModel::Constant)
+        t << pov_number(m.constant_reflectivity);  // Whitted: ks constant, kt = 1 − ks
+    else
+        t << "0, 1 fresnel on";  // exact unpolarised Fresnel
+    t << " } conserve_energy }";
     return t.str();
 }
 
-std::string interior(const Material& m) {
+std::string texture(const Material& m) {
+    return "texture { " + std::visit([](const auto& kind) { return texture_of(kind); }, m.kind) + " }";
+}
+
+std::string interior(const material::Dielectric& m) {
     std::string s = "interior { ior " + pov_number(m.ior);
     if (m.dispersion && m.dispersion->is_povray() && m.dispersion->dispersive()) {
         const auto& p = std::get<spectrum::PovRayModel>(m.dispersion->model);
@@ -376,30 +325,33 @@ std::string interior(const Material& m) {
 
 // `solid`: a transparent object, whose mesh gets an inside_vector so that POV-Ray's
 // inside test (a camera inside it) sees the solid (mesh.cpp: no vector, never inside).
-std::string shape(const Shape& sh, bool solid = false) {
+std::string pov_shape(const Sphere& s, bool) {
+    return "sphere { " + vec(s.center) + ", " + pov_number(std::abs(s.radius)) + (s.radius < 0 ? " inverse" : "");
+}
+std::string pov_shape(const Plane& p, bool) { return "plane { " + vec(p.normal) + ", " + pov_number(p.offset); }
+std::string pov_shape(const TriangleMesh& m, bool solid) {
     std::ostringstream o;
-    if (const auto* s = std::get_if<Sphere>(&sh)) {
-        o << "sphere { " << vec(s->center) << ", " << pov_number(std::abs(s->radius));
-        if (s->radius < 0) o << " inverse";
-    } else if (const auto* p = std::get_if<Plane>(&sh)) {
-        o << "plane { " << vec(p->normal) << ", " << pov_number(p->offset);
-    } else if (const auto* m = std::get_if<TriangleMesh>(&sh)) {
-        o << "mesh2 {\n    vertex_vectors { " << m->vertices.size();
-        for (const Vec3& v : m->vertices) o << ",\n      " << vec(v);
-        o << " }\n    face_indices { " << m->triangles.size();
-        for (const auto& t : m->triangles) o << ",\n      <" << t[0] << ", " << t[1] << ", " << t[2] << ">";
-        o << " }\n   ";
-        if (solid) o << " inside_vector <0.5773, 0.5774, 0.5775>\n   ";
-    } else {
-        const auto& c = std::get<ConvexPolyhedron>(sh);
-        o << "intersection {";
-        for (size_t k = 0; k < c.planes.size(); ++k) {
-            o << "\n    plane { " << vec(c.planes[k].normal) << ", " << pov_number(c.planes[k].offset) << " }";
-            if (k < c.labels.size() && !c.labels[k].empty()) o << "  // " << comment_text(c.labels[k]);
-        }
-        o << "\n   ";
+    o << "mesh2 {\n    vertex_vectors { " << m.vertices.size();
+    for (const Vec3& v : m.vertices) o << ",\n      " << vec(v);
+    o << " }\n    face_indices { " << m.triangles.size();
+    for (const auto& t : m.triangles) o << ",\n      <" << t[0] << ", " << t[1] << ", " << t[2] << ">";
+    o << " }\n   ";
+    if (solid) o << " inside_vector <0.5773, 0.5774, 0.5775>\n   ";
+    return o.str();
+}
+std::string pov_shape(const ConvexPolyhedron& c, bool) {
+    std::ostringstream o;
+    o << "intersection {";
+    for (size_t k = 0; k < c.planes.size(); ++k) {
+        o << "\n    plane { " << vec(c.planes[k].normal) << ", " << pov_number(c.planes[k].offset) << " }";
+        if (k < c.labels.size() && !c.labels[k].empty()) o << "  // " << comment_text(c.labels[k]);
     }
-    return o.str();  // open: the caller appends texture, interior and the closing brace
+    o << "\n   ";
+    return o.str();
+}
+// Open: the caller appends texture, interior and the closing brace.
+std::string shape(const Shape& sh, bool solid = false) {
+    return std::visit([&](const auto& s) { return pov_shape(s, solid); }, sh);
 }
 
 std::string camera(const Camera& c) {
@@ -452,7 +404,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     bool fresnel_glass = false;  // the only rule a container changes is Fresnel at exits
     for (const Object& obj : s.objects) {
         const Material& m = s.materials[obj.material];
-        fresnel_glass = fresnel_glass || (m.kind == MaterialKind::Dielectric && m.reflectance == ReflectanceModel::Fresnel);
+        fresnel_glass = fresnel_glass || (m.dielectric() && m.dielectric()->reflectance == ReflectanceModel::Fresnel);
     }
     std::set<size_t> grouped;
     for (const auto& g : groups) grouped.insert(g.begin(), g.end());
@@ -473,7 +425,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
                                       "starts such rays inside it and drops Fresnel reflection at glass exits)");
         o << "// " << comment_text(obj.name) << " (" << comment_text(m.name) << ")\n";
         o << shape(sh) << (c == Containment::Inside ? " inverse" : "") << " " << texture(m);
-        if (m.kind == MaterialKind::Emissive) o << " no_shadow";  // a highlight sphere, not an occluder
+        if (m.is<material::Emissive>()) o << " no_shadow";  // a highlight sphere, not an occluder
         o << " }\n";
     }
     const std::string target = opt.photons ? " photons { target refraction on reflection on }" : "";
@@ -481,7 +433,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         const Material& m = s.materials[s.objects[g[0]].material];
         o << "// " << comment_text(s.objects[g[0]].name) << " (" << comment_text(m.name) << ")";
         if (g.size() == 1) {
-            o << "\n" << shape(s.objects[g[0]].shape, true) << " " << texture(m) << " " << interior(m) << target << " }\n";
+            o << "\n" << shape(s.objects[g[0]].shape, true) << " " << texture(m) << " " << interior(*m.dielectric()) << target << " }\n";
             continue;
         }
         o << " hollowed by";
@@ -490,7 +442,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         // POV-Ray's inside test (a camera in the shell or in a cavity) is the solid's.
         o << "\nintersection {\n";
         for (size_t i : g) o << "  " << shape(s.objects[i].shape) << " }\n";
-        o << "  " << texture(m) << "\n  " << interior(m) << target << "\n}\n";
+        o << "  " << texture(m) << "\n  " << interior(*m.dielectric()) << target << "\n}\n";
     }
     return o.str();
 }

@@ -127,13 +127,12 @@ FresnelSphereSetup fresnel_sphere_setup(const Scene& s) {
     const std::string f = s.source;
     if (s.objects.size() != 1) throw InputError(f + ": analytic fresnel-sphere needs exactly one object");
     const auto* sp = std::get_if<Sphere>(&s.objects[0].shape);
-    const Material& m = s.materials[s.objects[0].material];
-    if (!sp || sp->radius <= 0 || m.kind != MaterialKind::Dielectric || m.reflectance != ReflectanceModel::Fresnel ||
-        m.filter != Vec3(0, 0, 0))
+    const auto* m = s.materials[s.objects[0].material].dielectric();
+    if (!sp || sp->radius <= 0 || !m || m->reflectance != ReflectanceModel::Fresnel || m->filter != Vec3(0, 0, 0))
         throw InputError(f + ": analytic fresnel-sphere needs a sphere of a Fresnel dielectric with filter [0, 0, 0]");
     if (s.background.kind != Background::Kind::Solid || s.background.color != Vec3(1, 1, 1))
         throw InputError(f + ": analytic fresnel-sphere needs a solid white background [1, 1, 1]");
-    return {*sp, m.ior};
+    return {*sp, m->ior};
 }
 
 // The images of a case in report order (side by side): what exists is listed.

@@ -1,12 +1,12 @@
 #include "core/integrators/spectral.h"
 
 #include <cmath>
-#include <deque>
 #include <map>
 #include <numeric>
 #include <optional>
 
 #include "core/illumination_map.h"
+#include "core/ray_tree.h"
 #include "core/spectrum/cie.h"
 #include "geometry/error.h"
 
@@ -20,8 +20,9 @@ namespace {
 // precision, differs from 1 (trace.cpp: haveDispersion = fabs(dispersion - 1.0) >= EPSILON).
 const spectrum::PovRayModel* pov_splitting_model(const Material& m) {
     constexpr double kPovEpsilon = 1e-10;
-    if (m.kind != MaterialKind::Dielectric || !m.dispersion || !m.dispersion->is_povray()) return nullptr;
-    const auto& p = std::get<spectrum::PovRayModel>(m.dispersion->model);
+    const auto* d = m.dielectric();
+    if (!d || !d->dispersion || !d->dispersion->is_povray()) return nullptr;
+    const auto& p = std::get<spectrum::PovRayModel>(d->dispersion->model);
     return std::fabs(static_cast<double>(static_cast<float>(p.dispersion)) - 1.0) >= kPovEpsilon ? &p : nullptr;
 }
 
@@ -67,7 +68,7 @@ SpectralContext SpectralContext::build(const Scene& scene) {
         c.split_bands.assign(materials, all_bands);
         for (size_t mi = 0; mi < materials; ++mi) {
             const Material& m = scene.materials[mi];
-            c.dispersive[mi] = m.kind == MaterialKind::Dielectric && m.dispersion.has_value();
+            c.dispersive[mi] = m.dielectric() && m.dielectric()->dispersion.has_value();
         }
     }
     std::vector<double> all = c.wavelengths;
@@ -75,7 +76,7 @@ SpectralContext SpectralContext::build(const Scene& scene) {
     c.index.assign(all.size(), std::vector<double>(materials, 0.0));
     for (size_t mi = 0; mi < materials; ++mi) {
         if (!c.dispersive[mi]) continue;
-        const Material& m = scene.materials[mi];
+        const material::Dielectric& m = *scene.materials[mi].dielectric();
         for (size_t b = 0; b < all.size(); ++b) {
             double n = m.dispersion->n(all[b]);
             // POV-Ray's law is relative to the interior's ior (single precision there).
@@ -93,118 +94,101 @@ SpectralContext SpectralContext::build(const Scene& scene) {
 
 namespace {
 
-struct Entry {
-    Ray ray;
-    Vec3 weight;
-    double bailout;
-    int depth, refl, trans;
-};
-
-class Walker {
+// The spectral eye pass's branch ends; `sum` collects one walk's light.
+class SpectralEnds {
 public:
-    Walker(const SceneTracer& t, const SpectralContext& c, RenderStats& s) : tracer_(t), ctx_(c), stats_(s) {}
+    SpectralEnds(const SceneTracer& t, const SpectralContext& c, RenderStats& s) : tracer_(t), ctx_(c), stats_(s) {}
 
-    // Walks the FIFO list to the end. band < 0: RGB rays that split at their first
-    // dispersive hit; else every dispersive dielectric has its index at band `band`.
-    Vec3 walk(std::deque<Entry>& list, int band) {
-        Vec3 sum(0, 0, 0);
-        while (!list.empty()) {
-            const Entry e = list.front();
-            list.pop_front();
-            const auto hit = tracer_.intersect(e.ray, stats_);
-            if (!hit) {
-                sum += e.weight.cwiseProduct(tracer_.background(e.ray.dir));
-                continue;
-            }
-            const int mi = hit->object->material;
-            if (band < 0 && ctx_.dispersive[mi]) {
-                sum += split(e, *hit, list);
-                continue;
-            }
-            sum += expand(e, *hit, band < 0 ? 0.0 : ctx_.index[band][mi], list);
+    Vec3 sum{0, 0, 0};
+
+    void background(const TreeEntry& e) { sum += e.weight.cwiseProduct(tracer_.background(e.ray.dir)); }
+
+    void leaf(const TreeEntry& e, const SurfaceHit& h) {
+        Vec3 local = tracer_.local_light(h, stats_);
+        const Material& m = *h.material;
+        if (ctx_.maps && m.diffuse_surface()) {
+            const auto* d = m.as<material::Diffuse>();
+            const Pigment& pig = d ? d->pigment : m.as<material::Lambertian>()->pigment;
+            const int obj = static_cast<int>(h.object - tracer_.scene().objects.data());
+            local += (d ? d->diffuse : 1.0) * tracer_.pigment(pig, h.hit.point).cwiseProduct(ctx_.maps->irradiance(obj, h.hit));
         }
-        return sum;
+        sum += e.weight.cwiseProduct(local);
+    }
+
+    double band_ior(const TreeEntry& e, const SurfaceHit& h) const {
+        return e.band < 0 ? 0.0 : ctx_.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
+    }
+
+    // An RGB ray at its first dispersive hit splits into bands.
+    bool intercept(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List& list) {
+        if (e.band >= 0 || !ctx_.dispersive[static_cast<size_t>(h.object->material)]) return false;
+        sum += split(w, e, h, list);
+        return true;
     }
 
 private:
-    // The node at a hit: adds its children to `list`, returns the local light.
-    Vec3 expand(const Entry& e, const SurfaceHit& h, double band_ior, std::deque<Entry>& list) {
-        const Node n = tracer_.node(h, e.ray, stats_, band_ior);
-        Vec3 local = n.local;
-        const Material& m = *h.material;
-        if (ctx_.maps && (m.kind == MaterialKind::Diffuse || m.kind == MaterialKind::Lambertian)) {
-            const int obj = static_cast<int>(h.object - tracer_.scene().objects.data());
-            local += m.diffuse * tracer_.pigment(m, h.hit.point).cwiseProduct(ctx_.maps->irradiance(obj, h.hit));
-        }
-        for (int b = 0; b < n.branches; ++b) push(e, n.branch[b], b == 1, list);
-        return e.weight.cwiseProduct(local);
-    }
-
-    void push(const Entry& e, const Branch& br, bool transmitted, std::deque<Entry>& list) {
-        const double bail = e.bailout * br.bailout_factor;
-        if (bail <= 0 || bail < tracer_.settings().pruning_threshold()) {
-            ++stats_.pruned;
-            return;
-        }
-        const int refl = e.refl + (transmitted ? 0 : 1), trans = e.trans + (transmitted ? 1 : 0);
-        if (e.depth + 1 > tracer_.settings().max_depth || refl > ctx_.max_reflections ||
-            trans > ctx_.max_transmissions) {
-            ++stats_.depth_limited;
-            return;
-        }
-        list.push_back({br.ray, e.weight.cwiseProduct(br.factor), bail, e.depth + 1, refl, trans});
+    // Walks `list` with fresh ends and returns its light.
+    Vec3 subwalk(RayTreeWalker& w, RayTreeWalker::List& list) {
+        SpectralEnds sub(tracer_, ctx_, stats_);
+        w.walk(list, sub);
+        return sub.sum;
     }
 
     // The subtree below hit h traced at one band.
-    Vec3 band_tree(const Entry& e, const SurfaceHit& h, int band) {
+    Vec3 band_tree(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, int band) {
         const std::uint64_t before = stats_.segments;
-        std::deque<Entry> list;
-        Vec3 v = expand(e, h, ctx_.index[band][h.object->material], list);
-        v += walk(list, band);
+        TreeEntry eb = e;
+        eb.band = band;
+        RayTreeWalker::List list;
+        SpectralEnds sub(tracer_, ctx_, stats_);
+        w.expand(eb, h, ctx_.index[static_cast<size_t>(band)][static_cast<size_t>(h.object->material)], list, sub);
+        w.walk(list, sub);
         stats_.wavelength_segments += stats_.segments - before;
-        return v;
+        return sub.sum;
     }
 
-    Vec3 split(const Entry& e, const SurfaceHit& h, std::deque<Entry>& rgb_list) {
+    Vec3 split(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List& rgb_list) {
         ++stats_.spectral_splits;
-        const int mi = h.object->material;
+        const size_t mi = static_cast<size_t>(h.object->material);
         if (ctx_.pov) {
             // POV-Ray: Fresnel and the reflected ray with the nominal index (stays RGB);
             // the refracted ray, when spawned, splits into bands, each with its own
-            // direction and TIR test (SceneTracer::dielectric_node_pov, `split`).
+            // direction and TIR test (core/interaction.cpp, `split`).
             const std::vector<int>& bands = ctx_.split_bands[mi];
-            const Node first = tracer_.node(h, e.ray, stats_, ctx_.index[bands[0]][mi], true);
-            if (first.branches > 0) push(e, first.branch[0], false, rgb_list);
-            if (first.branches < 2) return e.weight.cwiseProduct(first.local);  // nothing refracts
+            const Interaction first = tracer_.interact(h, e.ray, stats_, ctx_.index[static_cast<size_t>(bands[0])][mi], true);
+            if (first.branches > 0) w.push(e, h, first.branch[0], false, rgb_list);
+            if (first.branches < 2) return Vec3(0, 0, 0);  // nothing refracts
             Vec3 sum(0, 0, 0);
             // A band's TIR mirror ray is a full ray (it splits again), the same for every
             // band that meets TIR: traced once with the sum of their weights.
             Vec3 mirror_weight(0, 0, 0);
             std::optional<Branch> mirror;
             for (const int k : bands) {
-                const Node bn = k == bands[0] ? first : tracer_.node(h, e.ray, stats_, ctx_.index[k][mi], true);
+                const size_t kb = static_cast<size_t>(k);
+                const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
                 if (bn.split_mirror) {
                     mirror = bn.branch[1];
-                    mirror_weight += ctx_.weights[k];
+                    mirror_weight += ctx_.weights[kb];
                     continue;
                 }
                 const std::uint64_t before = stats_.segments;
-                std::deque<Entry> list;
-                push(e, bn.branch[1], true, list);
-                sum += ctx_.weights[k].cwiseProduct(walk(list, k));
+                RayTreeWalker::List list;
+                w.push(e, h, bn.branch[1], true, list, Vec3(1, 1, 1), k);
+                sum += ctx_.weights[kb].cwiseProduct(subwalk(w, list));
                 stats_.wavelength_segments += stats_.segments - before;
             }
             if (mirror) {
-                std::deque<Entry> list;
-                push(e, *mirror, false, list);
-                sum += mirror_weight.cwiseProduct(walk(list, -1));
+                RayTreeWalker::List list;
+                w.push(e, h, *mirror, false, list);
+                sum += mirror_weight.cwiseProduct(subwalk(w, list));
             }
             return sum;
         }
         if (ctx_.shortcut) {
             ++stats_.shortcut_tests;
             const int first = static_cast<int>(ctx_.bands());
-            const Vec3 c0 = band_tree(e, h, first), c1 = band_tree(e, h, first + 1), c2 = band_tree(e, h, first + 2);
+            const Vec3 c0 = band_tree(w, e, h, first), c1 = band_tree(w, e, h, first + 1),
+                       c2 = band_tree(w, e, h, first + 2);
             const double d = std::fmax((c0 - c1).norm(), std::fmax((c1 - c2).norm(), (c0 - c2).norm()));
             if (d < ctx_.shortcut_threshold) {
                 ++stats_.shortcut_taken;
@@ -212,7 +196,8 @@ private:
             }
         }
         Vec3 sum(0, 0, 0);
-        for (const int k : ctx_.split_bands[mi]) sum += ctx_.weights[k].cwiseProduct(band_tree(e, h, k));
+        for (const int k : ctx_.split_bands[mi])
+            sum += ctx_.weights[static_cast<size_t>(k)].cwiseProduct(band_tree(w, e, h, k));
         return sum;
     }
 
@@ -223,12 +208,20 @@ private:
 
 }  // namespace
 
+TreeLimits SpectralContext::limits(const RenderSettings& s) const {
+    TreeLimits l = tree_limits(s);
+    l.max_reflections = max_reflections;
+    l.max_transmissions = max_transmissions;
+    return l;
+}
+
 Vec3 spectral_radiance(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
                        RenderStats& stats) {
-    Walker w(tracer, ctx, stats);
-    std::deque<Entry> list;
-    list.push_back({primary, Vec3(1, 1, 1), 1.0, 0, 0, 0});
-    return w.walk(list, -1);
+    RayTreeWalker walker(tracer, ctx.limits(tracer.settings()), stats);
+    SpectralEnds ends(tracer, ctx, stats);
+    RayTreeWalker::List list{TreeEntry{primary, Vec3(1, 1, 1)}};
+    walker.walk(list, ends);
+    return ends.sum;
 }
 
 }  // namespace refract

@@ -22,7 +22,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/tracer.h"
+#include "core/ray_tree.h"
 
 namespace refract {
 
@@ -46,12 +46,14 @@ struct SpectralContext {
     bool clip = true;                       // cie-rgb: clip negatives at the end
     bool shortcut = false;
     double shortcut_threshold = 0.01;
-    static constexpr int kUnlimited = 1 << 30;
+    static constexpr int kUnlimited = TreeLimits::kUnlimited;
     int max_reflections = kUnlimited, max_transmissions = kUnlimited;  // unset: no limit
     const IlluminationMaps* maps = nullptr; // light pass result, read at diffuse hits
 
     size_t bands() const { return wavelengths.size(); }  // n
     Vec3 finish(const Vec3& rgb) const;
+    // The walker's limits: the render's, with the separate reflection/transmission limits.
+    TreeLimits limits(const RenderSettings& s) const;
 
     // Throws InputError when the spectral settings are invalid.
     static SpectralContext build(const Scene& scene);

@@ -1,7 +1,5 @@
 #include "core/integrators/stochastic.h"
 
-#include "core/optics.h"
-
 namespace refract {
 
 Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng, RenderStats& stats) {
@@ -13,44 +11,29 @@ Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng
         const auto hit = tracer.intersect(ray, stats);
         if (!hit) return radiance + throughput.cwiseProduct(tracer.background(ray.dir));
         const Material& m = *hit->material;
+        const bool random_scatter = m.is<material::Lambertian>() || m.is<material::Metal>();
         if (depth + 1 > s.max_depth) {
             // The ray after the last bounce: its hit's own light counts (emissive, direct
             // light on a diffuse surface), as in the tree integrators; nothing scatters on.
             ++stats.depth_limited;
-            if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Metal)
-                radiance += throughput.cwiseProduct(tracer.node(*hit, ray, stats).local);
+            if (!random_scatter) radiance += throughput.cwiseProduct(tracer.local_light(*hit, stats));
             return radiance;
         }
-        const Vec3& p = hit->hit.point;
-        Vec3 dir;
-        if (m.kind == MaterialKind::Lambertian) {
-            dir = hit->normal + rng.unit_vector();  // RTIOW lambertian scatter
-            if (dir.squaredNorm() < 1e-16) dir = hit->normal;
-            throughput = throughput.cwiseProduct(tracer.pigment(m, p));
-        } else if (m.kind == MaterialKind::Metal) {
-            dir = optics::reflect(ray.dir, hit->normal) + m.fuzz * rng.in_unit_sphere();
-            if (dir.dot(hit->normal) <= 0) return radiance;  // absorbed
-            throughput = throughput.cwiseProduct(m.color);
+        std::optional<Scatter> next;
+        if (const auto* l = m.as<material::Lambertian>()) {
+            next = scatter(*l, tracer.pigment(l->pigment, hit->hit.point), *hit, rng);
+        } else if (const auto* metal = m.as<material::Metal>()) {
+            next = scatter(*metal, *hit, ray, rng);
         } else {
-            // Every other material is one tree node: sample one of its branches with
-            // probability proportional to the reflectance (RTIOW), keeping leaves' light.
-            const Node n = tracer.node(*hit, ray, stats);
-            radiance += throughput.cwiseProduct(n.local);
-            if (n.branches == 0) return radiance;
-            if (m.kind == MaterialKind::Dielectric) {
-                const bool refl = n.branches == 1 || rng.uniform() < n.reflectance;
-                if (!refl) {
-                    dir = n.branch[1].ray.dir;
-                    throughput = throughput.cwiseProduct(m.filter);
-                } else {
-                    dir = n.branch[0].ray.dir;
-                }
-            } else {
-                dir = n.branch[0].ray.dir;
-                throughput = throughput.cwiseProduct(n.branch[0].factor);
-            }
+            // Every other material: sample one branch of its interaction (RTIOW), keeping
+            // a leaf's light.
+            const Interaction in = tracer.interact(*hit, ray, stats);
+            if (in.leaf) radiance += throughput.cwiseProduct(tracer.local_light(*hit, stats));
+            next = sample_branch(m, in, rng);
         }
-        ray = Ray{p, dir.normalized()};
+        if (!next) return radiance;
+        throughput = throughput.cwiseProduct(next->factor);
+        ray = Ray{hit->hit.point, next->dir.normalized()};
     }
 }
 

@@ -30,8 +30,8 @@ Vec3 whitted_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats
             tree[k].local = tracer.background(p.ray.dir);
             continue;
         }
-        const Node n = tracer.node(*hit, p.ray, stats);
-        tree[k].local = n.local;
+        const Interaction n = tracer.interact(*hit, p.ray, stats);
+        if (n.leaf) tree[k].local = tracer.local_light(*hit, stats);
         for (int b = 0; b < n.branches; ++b) {
             if (p.depth + 1 > max_depth) {
                 ++stats.depth_limited;

@@ -1,0 +1,150 @@
+#include "core/interaction.h"
+
+#include <cmath>
+
+#include "core/tracer.h"
+
+namespace refract {
+
+namespace {
+
+Interaction leaf() {
+    Interaction n;
+    n.leaf = true;
+    return n;
+}
+
+Interaction mirror(const Vec3& color, const SurfaceHit& h, const Ray& ray) {
+    Interaction n;
+    n.branch[0] = Branch{Ray{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()}, color, color.maxCoeff()};
+    n.branches = 1;
+    n.reflectance = color.maxCoeff();
+    return n;
+}
+
+// POV-Ray 3.7 with `reflection { MIN, MAX fresnel on } conserve_energy` or
+// `reflection { ks } conserve_energy` and `pigment { rgbf <filter, 1> }`
+// (trace.cpp ComputeLightedTexture, ComputeReflectivity, ComputeRefraction):
+// - reflectivity R: the model's value; on total internal reflection Fresnel gives
+//   MAX = 1, a constant ks stays ks (dispersion: Fresnel with the nominal index, the
+//   TIR test with the band's);
+// - the surface's filter colour is filter·(1 − R), and a refracted ray is spawned only
+//   when its greyscale exceeds adc_bailout (a local test, not the cumulative weight);
+//   its adc weight is parent × max3(filter·(1 − R));
+// - if that refracted ray meets total internal reflection it becomes a mirror ray of
+//   colour factor 1 (unfiltered) with the refraction's adc weight, and replaces the
+//   reflection term;
+// - the reflected ray has colour factor R and adc weight parent × R; none when R = 0.
+// Dispersion (ComputeRefraction): an RGB ray splits into bands at its first refraction
+// whenever the refracted ray is spawned, even where the nominal index meets total
+// internal reflection (a constant ks); a band meeting total internal reflection there
+// (`split`) becomes a mirror ray filtered by filter·(1 − R) like the refraction (the
+// band loop discards the TIR flag), and the reflection term is kept; that mirror ray
+// is made from the incoming ray (TraceRefractionRay → ComputeReflection), so it is
+// not one band but a full ray that splits again at its next dispersive hit. A ray that is
+// already one band (`band`) follows the rule above with its own index.
+Interaction dielectric_pov(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, double cos_i,
+                           double eta, const std::optional<Vec3>& refr, bool band, bool split, double adc) {
+    double R = dielectric_reflectance(m.reflectance, m.constant_reflectivity, cos_i, eta);
+    // A band ray (dispersion) keeps the nominal index's R even where its own index meets
+    // total internal reflection; the refracted ray then turns into the mirror ray below.
+    if (!refr && !band && m.reflectance != ReflectanceModel::Constant) R = 1.0;
+    const Vec3 filter = (1.0 - R) * m.filter;
+    const double trans = std::fmin(1.0, std::abs(filter.dot(SceneTracer::kPovGreyscale)));
+    const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()};
+    Interaction n;
+    n.reflectance = R;
+    if (trans > adc && !refr && split) {  // a band's total internal reflection at the split
+        n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
+        n.branch[1] = Branch{reflected, filter, filter.cwiseAbs().maxCoeff()};
+        n.branches = 2;
+        n.split_mirror = true;
+        return n;
+    }
+    if (trans > adc && !refr) {  // the refracted ray turns into total internal reflection
+        n.branch[0] = Branch{reflected, Vec3(1, 1, 1), filter.cwiseAbs().maxCoeff()};
+        n.branches = 1;
+        n.reflectance = 1.0;
+        return n;
+    }
+    n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
+    n.branches = 1;
+    if (trans > adc) {
+        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, filter, filter.cwiseAbs().maxCoeff()};
+        n.branches = 2;
+    }
+    return n;
+}
+
+}  // namespace
+
+Interaction interact(const material::Diffuse&, const SurfaceHit&, const Ray&, const InteractionContext&) {
+    return leaf();
+}
+// The tree integrators light RTIOW's Lambertian directly, as a diffuse surface.
+Interaction interact(const material::Lambertian&, const SurfaceHit&, const Ray&, const InteractionContext&) {
+    return leaf();
+}
+Interaction interact(const material::Emissive&, const SurfaceHit&, const Ray&, const InteractionContext&) {
+    return leaf();
+}
+Interaction interact(const material::Mirror& m, const SurfaceHit& h, const Ray& ray, const InteractionContext&) {
+    return mirror(m.color, h, ray);
+}
+// Fuzz needs sampling: the tree takes the mirror direction.
+Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& ray, const InteractionContext&) {
+    return mirror(m.color, h, ray);
+}
+
+Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    // POV-Ray stores an interior's ior in single precision (frame.h, class Interior):
+    // n = 1.333 refracts as 1.33299994..., which moves far-away hits by ~0.1 unit.
+    const double nominal = c.pov ? static_cast<double>(static_cast<float>(m.ior)) : m.ior;
+    const double ior = c.band_ior > 0 ? c.band_ior : nominal;
+    const double eta = h.entering ? ior : 1.0 / ior;
+    if (c.pov) {
+        const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
+        const auto refr = optics::refract(ray.dir, h.normal, eta);
+        return dielectric_pov(m, h, ray, cos_i, h.entering ? nominal : 1.0 / nominal, refr, c.band_ior > 0, c.split,
+                              c.adc);
+    }
+    const DielectricNode<Vec3> d = dielectric_node(ray.dir, h.normal, eta, m.reflectance, m.constant_reflectivity,
+                                                   m.filter);
+    Interaction n;
+    n.reflectance = d.R;
+    n.branch[0] = Branch{Ray{h.hit.point, d.reflected}, Vec3::Constant(d.R), d.R};
+    n.branches = 1;
+    if (d.refracted && d.R < 1.0) {
+        n.branch[1] = Branch{Ray{h.hit.point, *d.refracted}, d.transmit_factor, d.transmit_bailout};
+        n.branches = 2;
+    }
+    return n;
+}
+
+Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    return std::visit([&](const auto& kind) { return interact(kind, h, ray, c); }, m.kind);
+}
+
+std::optional<Scatter> scatter(const material::Lambertian&, const Vec3& pigment, const SurfaceHit& h, Rng& rng) {
+    Vec3 dir = h.normal + rng.unit_vector();  // RTIOW lambertian scatter
+    if (dir.squaredNorm() < 1e-16) dir = h.normal;
+    return Scatter{dir, pigment};
+}
+
+std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, const Ray& ray, Rng& rng) {
+    const Vec3 dir = optics::reflect(ray.dir, h.normal) + m.fuzz * rng.in_unit_sphere();
+    if (dir.dot(h.normal) <= 0) return std::nullopt;  // absorbed
+    return Scatter{dir, m.color};
+}
+
+std::optional<Scatter> sample_branch(const Material& m, const Interaction& in, Rng& rng) {
+    if (in.branches == 0) return std::nullopt;
+    if (const auto* d = m.dielectric()) {
+        const bool refl = in.branches == 1 || rng.uniform() < in.reflectance;
+        if (!refl) return Scatter{in.branch[1].ray.dir, d->filter};
+        return Scatter{in.branch[0].ray.dir, Vec3(1, 1, 1)};
+    }
+    return Scatter{in.branch[0].ray.dir, in.branch[0].factor};
+}
+
+}  // namespace refract

@@ -1,0 +1,153 @@
+#pragma once
+// What each material kind does where a ray meets it: the interaction returns the
+// branches the ray spawns (direction, colour factor, the factor the pruning threshold
+// uses), or says that the branch ends there (a leaf: diffuse surfaces and emitters, whose
+// light the integrator gathers). One function per kind, dispatched over the Material
+// variant, so a kind without one fails to compile. The stochastic integrator samples
+// these same branches (core/integrators/stochastic.cpp); only Lambertian and fuzzy metal
+// scatter randomly, and own that sampling here too.
+#include <array>
+#include <optional>
+
+#include "core/material.h"
+#include "core/optics.h"
+#include "core/random.h"
+#include "geometry/shapes.h"
+
+namespace refract {
+
+struct Object;
+
+struct SurfaceHit {
+    Hit hit;
+    const Object* object = nullptr;
+    const Material* material = nullptr;
+    Vec3 normal;           // unit normal on the incident side (normal·dir < 0)
+    bool entering = true;  // the ray goes from outside to inside the object
+};
+
+// One branch: the new ray, its colour factor (reflectance, transmittance × filter) and
+// the factor the pruning threshold uses (Yasuda's cumulative attenuation; POV-Ray's adc
+// weight in compat mode).
+struct Branch {
+    Ray ray;
+    Vec3 factor;
+    double bailout_factor;
+};
+
+struct Interaction {
+    bool leaf = false;          // the branch ends here (diffuse, Lambertian, emissive)
+    std::array<Branch, 2> branch;
+    int branches = 0;           // branch[0]: reflection; branch[1]: refraction
+    double reflectance = 0;     // dielectric: R used for the split (1 on TIR)
+    bool split_mirror = false;  // POV-Ray dispersion split: branch[1] is a band's TIR mirror ray
+};
+
+// What a dielectric interaction depends on besides the hit.
+struct InteractionContext {
+    bool pov = false;     // POV-Ray 3.7 compat semantics
+    double adc = 0;       // POV-Ray: adc_bailout (local test of the refracted ray)
+    double band_ior = 0;  // > 0: the index at one wavelength instead of `ior`
+    bool split = false;   // POV-Ray: the band's share of an RGB ray splitting here
+};
+
+// Reflectance of a dielectric for its model at cos θi and relative index eta (Constant,
+// Fresnel, Fresnel-s, Fresnel-p, Schlick); 1 on total internal reflection for the
+// physical models. Written over the scalar type (experiments count its arithmetic).
+template <class S>
+S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, S eta) {
+    namespace gen = optics::generic;
+    switch (model) {
+        case ReflectanceModel::Constant: return constant;
+        case ReflectanceModel::Fresnel: return gen::fresnel_reflectance(cos_i, eta);
+        case ReflectanceModel::FresnelS: {
+            const auto f = gen::fresnel(cos_i, eta);
+            return f ? f->Rs : S(1.0);
+        }
+        case ReflectanceModel::FresnelP: {
+            const auto f = gen::fresnel(cos_i, eta);
+            return f ? f->Rp : S(1.0);
+        }
+        case ReflectanceModel::Schlick:
+            return gen::cos_transmitted(cos_i, eta) ? gen::schlick(cos_i, eta) : S(1.0);
+    }
+    return S(1.0);
+}
+
+// A dielectric node in the physical mode (Yasuda 1984 §3.1.3 ③ and ④): reflected and
+// refracted directions (unit), the reflectance R, and the refracted branch's colour and
+// threshold factors. Written over the vector type V (Scalar, dot, normalized, maxCoeff,
+// cwiseProduct); refract renders with V = Vec3 and experiments/yasuda_cost.cpp counts
+// the arithmetic of this same function.
+template <class V>
+struct DielectricNode {
+    using S = typename V::Scalar;
+    V reflected;
+    std::optional<V> refracted;  // empty on total internal reflection
+    S R;
+    V transmit_factor;           // (1 − R) · filter
+    S transmit_bailout;          // its largest component
+};
+
+template <class V>
+DielectricNode<V> dielectric_node(const V& dir, const V& normal, typename V::Scalar eta, ReflectanceModel model,
+                                  typename V::Scalar constant, const V& filter) {
+    using S = typename V::Scalar;
+    using std::fmin;
+    namespace gen = optics::generic;
+    const S cos_i = fmin(S(-dir.dot(normal)), S(1.0));
+    const auto refr = gen::refract(dir, normal, eta);
+    // Constant reflectivity (Whitted, Fig. 9) keeps its ks even where the direction
+    // computation finds total internal reflection; then all light goes the mirror way.
+    const S R = refr ? dielectric_reflectance(model, constant, cos_i, eta) : S(1.0);
+    // Rays are unit length by convention: renormalise, or the rounding error of |dir|
+    // grows about tenfold per bounce in a chain of internal reflections (the sphere
+    // intersection assumes |dir| = 1, so the hit leaves the surface and the next normal
+    // is off), and after ~10 bounces the path is wrong.
+    DielectricNode<V> n{gen::reflect(dir, normal).normalized(), std::nullopt, R, V(), S(0.0)};
+    if (refr) {
+        n.transmit_factor = (S(1.0) - R) * filter;
+        n.transmit_bailout = n.transmit_factor.maxCoeff();
+        n.refracted = refr->normalized();
+    }
+    return n;
+}
+
+// The child's cumulative attenuation (Yasuda eq. 12): the parent's weight times the
+// branch's factor, and the scalar the threshold is compared with.
+template <class V>
+struct Attenuation {
+    V weight;
+    typename V::Scalar bailout;
+};
+template <class V>
+Attenuation<V> attenuate(const V& weight, typename V::Scalar bailout, const V& factor,
+                         typename V::Scalar bailout_factor) {
+    return {weight.cwiseProduct(factor), bailout * bailout_factor};
+}
+
+// The interaction of each kind at hit h of `ray`.
+Interaction interact(const material::Diffuse& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+Interaction interact(const material::Lambertian& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+Interaction interact(const material::Mirror& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+Interaction interact(const material::Emissive& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+
+// One sampled continuation of a path (stochastic integrator): the new direction and the
+// factor the path's throughput is multiplied by; empty when the path is absorbed.
+struct Scatter {
+    Vec3 dir;
+    Vec3 factor;
+};
+// Random scattering of the kinds that scatter randomly (RTIOW: Lambertian, fuzzy metal);
+// `pigment` is the Lambertian's albedo at the hit. Empty optional: absorbed.
+std::optional<Scatter> scatter(const material::Lambertian& m, const Vec3& pigment, const SurfaceHit& h, Rng& rng);
+std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
+// One branch of an interaction chosen at random (RTIOW's dielectric: reflection with
+// probability R, else refraction, the throughput unweighted by R; a mirror's single
+// branch with its colour factor).
+std::optional<Scatter> sample_branch(const Material& m, const Interaction& in, Rng& rng);
+
+}  // namespace refract

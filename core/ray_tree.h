@@ -1,0 +1,111 @@
+#pragma once
+// The ray-tree walker (Yasuda et al. 1984 §3.1.3): the tree is never stored; its
+// branches wait in a FIFO list, each with its cumulative attenuation, and a branch whose
+// attenuation falls below the pruning threshold, or that would exceed the depth or the
+// reflection/transmission limits, is dropped. The Fresnel-tree integrator, the spectral
+// eye pass and the light pass all walk their trees with this one walker; they differ only
+// in what happens where a branch ends (the `Ends` callbacks):
+//   void background(const TreeEntry&)              the branch left the scene
+//   void leaf(const TreeEntry&, const SurfaceHit&) it met a diffuse surface or an emitter
+//   bool intercept(RayTreeWalker&, const TreeEntry&, const SurfaceHit&, List&)
+//        before the hit's own interaction: true when the callback took the hit over
+//        (the spectral split at the first dispersive hit)
+//   double band_ior(const TreeEntry&, const SurfaceHit&)   the index at the entry's band
+//        (0: the material's own)
+#include <deque>
+
+#include "core/tracer.h"
+
+namespace refract {
+
+struct TreeEntry {
+    Ray ray;
+    Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
+    double bailout = 1.0;  // the scalar the threshold is compared with
+    int depth = 0;         // surface interactions before this ray
+    int reflections = 0, transmissions = 0;
+    int band = -1;         // spectral band of the ray; −1: an RGB ray
+    double travelled = 0;  // path length from the tree's root to this ray's origin
+};
+
+struct TreeLimits {
+    static constexpr int kUnlimited = 1 << 30;
+    double threshold = 0;  // RenderSettings::pruning_threshold()
+    int max_depth = 16;
+    int max_reflections = kUnlimited, max_transmissions = kUnlimited;
+};
+
+// The limits a scene's render settings set (no reflection/transmission limits).
+inline TreeLimits tree_limits(const RenderSettings& s) {
+    TreeLimits l;
+    l.threshold = s.pruning_threshold();
+    l.max_depth = s.max_depth;
+    return l;
+}
+
+class RayTreeWalker {
+public:
+    using List = std::deque<TreeEntry>;
+
+    RayTreeWalker(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
+        : tracer_(tracer), limits_(limits), stats_(stats) {}
+
+    const SceneTracer& tracer() const { return tracer_; }
+    RenderStats& stats() { return stats_; }
+
+    // Walks the list to the end.
+    template <class Ends>
+    void walk(List& list, Ends& ends) {
+        std::uint64_t peak = list.size();
+        while (!list.empty()) {
+            // ⑤ take the oldest entry and find its first surface.
+            const TreeEntry e = list.front();
+            list.pop_front();
+            const auto hit = tracer_.intersect(e.ray, stats_);
+            if (!hit) {
+                ends.background(e);
+                continue;
+            }
+            if (!ends.intercept(*this, e, *hit, list)) expand(e, *hit, ends.band_ior(e, *hit), list, ends);
+            if (list.size() > peak) peak = list.size();
+        }
+        if (peak > stats_.peak_list) stats_.peak_list = peak;
+    }
+
+    // ②③④ the interaction at hit h: a leaf goes to the callback, branches to the list.
+    template <class Ends>
+    void expand(const TreeEntry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
+        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior);
+        if (in.leaf) {
+            ends.leaf(e, h);
+            return;
+        }
+        for (int b = 0; b < in.branches; ++b) push(e, h, in.branch[b], b == 1, list);
+    }
+
+    // ⑥ a child with the parent's attenuation times the branch's factor (and `tint`, a
+    // band's weight), unless the threshold or a limit drops it. True when it was added.
+    bool push(const TreeEntry& e, const SurfaceHit& h, const Branch& br, bool transmitted, List& list,
+              const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
+        const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
+        if (a.bailout <= 0 || a.bailout < limits_.threshold) {
+            ++stats_.pruned;
+            return false;
+        }
+        const int refl = e.reflections + (transmitted ? 0 : 1), trans = e.transmissions + (transmitted ? 1 : 0);
+        if (e.depth + 1 > limits_.max_depth || refl > limits_.max_reflections || trans > limits_.max_transmissions) {
+            ++stats_.depth_limited;
+            return false;
+        }
+        list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, e.depth + 1, refl, trans,
+                        band == -2 ? e.band : band, e.travelled + h.hit.t});
+        return true;
+    }
+
+private:
+    const SceneTracer& tracer_;
+    TreeLimits limits_;
+    RenderStats& stats_;
+};
+
+}  // namespace refract
