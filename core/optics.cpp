@@ -31,3 +31,15 @@ std::optional<double> critical_angle(double eta) {
 double brewster_angle(double eta) { return std::atan(eta); }
 
 }  // namespace refract::optics
+
+namespace refract::optics {
+
+double beer_lambert(double alpha, double distance) { return std::exp(-alpha * distance); }
+
+std::optional<double> absorption_coefficient(double transmittance, double thickness) {
+    if (!(transmittance > 0.0 && transmittance <= 1.0)) return std::nullopt;
+    if (!(thickness > 0.0 && std::isfinite(thickness))) return std::nullopt;
+    return -std::log(transmittance) / thickness;
+}
+
+}  // namespace refract::optics

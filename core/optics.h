@@ -144,3 +144,18 @@ std::optional<double> critical_angle(double eta);
 double brewster_angle(double eta);
 
 }  // namespace refract::optics
+
+namespace refract::optics {
+
+// Beer–Lambert (Bouguer–Lambert) law: the fraction of light left after a path of
+// length `distance` in a medium of absorption coefficient `alpha`, T = exp(−α d).
+// α and d in reciprocal units (α in 1/m with d in m, …).
+double beer_lambert(double alpha, double distance);
+
+// The inverse of beer_lambert: the absorption coefficient α = −ln(T)/d of a medium that
+// transmits the fraction `transmittance` over a path of length `thickness` (a
+// "transmittance colour at a stated thickness", per channel). Empty unless
+// 0 < T <= 1 and d > 0 (both finite), so it never yields NaN, infinity or α < 0.
+std::optional<double> absorption_coefficient(double transmittance, double thickness);
+
+}  // namespace refract::optics

@@ -1,0 +1,120 @@
+#include "core/polarisation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/optics.h"
+
+namespace refract::polar {
+
+FresnelAmplitudes fresnel_amplitudes(double cos_i, double eta) {
+    if (const auto cos_t = optics::cos_transmitted(cos_i, eta)) {
+        // Same arithmetic as optics::generic::fresnel_terms, so rs², rp² are its Rs, Rp.
+        const double ct = *cos_t, n_ct = eta * ct, n_ci = eta * cos_i;
+        const double rs = (cos_i - n_ct) / (cos_i + n_ct);
+        const double rp = (n_ci - ct) / (n_ci + ct);
+        const double ts = 2.0 * cos_i / (cos_i + n_ct);
+        const double tp = 2.0 * cos_i / (n_ci + ct);
+        return FresnelAmplitudes{rs, rp, ts, tp, ct, false};
+    }
+    // TIR: cos θt = iγ; rs = (c − iηγ)/(c + iηγ), rp = (ηc − iγ)/(ηc + iγ), written as
+    // exact unit-modulus phasors. ηγ = sqrt(sin²θi − η²) is computed as in
+    // tir_phase_difference: near the critical angle δ ∝ sqrt(θi − θc), so the rounding of
+    // sin²θi − η² is what both see.
+    const double w = std::sqrt(std::max(0.0, (1.0 - cos_i * cos_i) - eta * eta));  // ηγ
+    const auto rs = std::polar(1.0, -2.0 * std::atan2(w, cos_i));
+    const auto rp = std::polar(1.0, -2.0 * std::atan2(w, eta * eta * cos_i));
+    return FresnelAmplitudes{rs, rp, 0.0, 0.0, w / eta, true};
+}
+
+Mueller jones_diagonal_to_mueller(std::complex<double> a, std::complex<double> b) {
+    // (Ex, Ey) → (a Ex, b Ey): |a Ex|² ± |b Ey|² mixes S0, S1; 2 conj(a Ex)(b Ey) =
+    // z · 2 Ex* Ey, so S2 + i S3 is multiplied by z = conj(a) b.
+    const double A = std::norm(a), B = std::norm(b);
+    const std::complex<double> z = std::conj(a) * b;
+    Mueller M = Mueller::Zero();
+    M(0, 0) = M(1, 1) = 0.5 * (A + B);
+    M(0, 1) = M(1, 0) = 0.5 * (A - B);
+    M(2, 2) = M(3, 3) = z.real();
+    M(2, 3) = -z.imag();
+    M(3, 2) = z.imag();
+    return M;
+}
+
+Mueller mueller_reflection(double cos_i, double eta) {
+    const auto f = fresnel_amplitudes(cos_i, eta);
+    return jones_diagonal_to_mueller(f.rs, f.rp);
+}
+
+std::optional<Mueller> mueller_transmission(double cos_i, double eta) {
+    const auto f = fresnel_amplitudes(cos_i, eta);
+    if (f.tir) return std::nullopt;
+    return Mueller(eta * f.cos_t / cos_i * jones_diagonal_to_mueller(f.ts, f.tp));
+}
+
+double tir_phase_difference(double cos_i, double eta) {
+    if (eta >= 1.0 || optics::cos_transmitted(cos_i, eta)) return 0.0;  // no TIR
+    const double sin2 = 1.0 - cos_i * cos_i;
+    return 2.0 * std::atan2(cos_i * std::sqrt(std::max(0.0, sin2 - eta * eta)), sin2);
+}
+
+Mueller rotator(double angle) {
+    const double c = std::cos(2.0 * angle), s = std::sin(2.0 * angle);
+    Mueller R = Mueller::Identity();
+    R(1, 1) = c;
+    R(1, 2) = s;
+    R(2, 1) = -s;
+    R(2, 2) = c;
+    return R;
+}
+
+double frame_angle(const Vec3& x_from, const Vec3& x_to, const Vec3& k) {
+    return std::atan2(k.dot(x_from.cross(x_to)), x_from.dot(x_to));
+}
+
+Vec3 s_axis(const Vec3& normal, const Vec3& k, const Vec3& fallback) {
+    const Vec3 s = normal.cross(k);
+    const double len = s.norm();
+    if (len > 1e-12) return s / len;
+    return (fallback - fallback.dot(k) * k).normalized();
+}
+
+Mueller linear_polariser(double angle) {
+    const double c = std::cos(2.0 * angle), s = std::sin(2.0 * angle);
+    Mueller M;
+    M << 1, c, s, 0,  //
+        c, c * c, c * s, 0,  //
+        s, c * s, s * s, 0,  //
+        0, 0, 0, 0;
+    return 0.5 * M;
+}
+
+Mueller circular_polariser(int handedness) {
+    const double h = handedness > 0 ? 1.0 : -1.0;
+    Mueller M = Mueller::Zero();
+    M(0, 0) = M(3, 3) = 0.5;
+    M(0, 3) = M(3, 0) = 0.5 * h;
+    return M;
+}
+
+Stokes unpolarised(double I) { return Stokes(I, 0.0, 0.0, 0.0); }
+
+Stokes linear(double I, double angle) {
+    return Stokes(I, I * std::cos(2.0 * angle), I * std::sin(2.0 * angle), 0.0);
+}
+
+Stokes circular(double I, int handedness) { return Stokes(I, 0.0, 0.0, handedness > 0 ? I : -I); }
+
+double degree_of_polarisation(const Stokes& S) {
+    if (!(S[0] > 0.0)) return 0.0;
+    return S.tail<3>().norm() / S[0];
+}
+
+double degree_of_linear_polarisation(const Stokes& S) {
+    if (!(S[0] > 0.0)) return 0.0;
+    return std::hypot(S[1], S[2]) / S[0];
+}
+
+double angle_of_linear_polarisation(const Stokes& S) { return 0.5 * std::atan2(S[2], S[1]); }
+
+}  // namespace refract::polar
