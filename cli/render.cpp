@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "core/polarisation_output.h"
 #include "core/render.h"
 #include "core/scene_json.h"
 
@@ -29,6 +30,8 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         opt.progress = refract::cli::stderr_is_terminal();
         const auto result = refract::render(scene, opt);
         refract::write_image(args->output, result.image, {args->linear16});
+        if (result.polarisation)
+            refract::write_polarisation(args->output, result.image.width, result.image.height, *result.polarisation);
         if (args->stats) std::cout << result.stats.summary();
     });
 }};

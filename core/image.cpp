@@ -26,6 +26,9 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
+// Writes to a temporary name beside `path`, then renames.
+void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* data);
+
 }  // namespace
 
 void write_image(const std::string& path, const Image& img, const WriteOptions& opt) {
@@ -62,6 +65,26 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
             bbuf[k] = static_cast<unsigned char>(std::lround(srgb_encode(img.rgb[k]) * 255.0));
         data = bbuf.data();
     }
+    write_atomically(path, spec, data);
+}
+
+void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
+                    const std::vector<double>& data) {
+    if (lower_extension(path) != ".exr") throw InputError(path + ": named channels need an .exr file");
+    const size_t n = static_cast<size_t>(width) * height * names.size();
+    if (width <= 0 || height <= 0 || names.empty() || data.size() != n)
+        throw InputError(path + ": channel data do not match the image size");
+    OIIO::ImageSpec spec(width, height, static_cast<int>(names.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = names;
+    std::vector<float> buf(n);
+    for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(data[k]);
+    write_atomically(path, spec, buf.data());
+}
+
+namespace {
+
+void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* data) {
+    const std::string ext = lower_extension(path);
     // Temporary name keeps the extension so OpenImageIO picks the right writer.
     const std::filesystem::path target(path);
     const std::filesystem::path tmp =
@@ -81,6 +104,8 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
         throw InputError(path + ": cannot write image: " + ec.message());
     }
 }
+
+}  // namespace
 
 Image read_image(const std::string& path) {
     auto in = OIIO::ImageInput::open(path);

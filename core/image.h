@@ -34,6 +34,11 @@ struct WriteOptions {
 // Throws InputError naming the path on failure (unknown extension, unwritable).
 void write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
 
+// A float OpenEXR file with the given channel names; `data` interleaved, row-major
+// (names.size() values per pixel). Atomic like write_image.
+void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
+                    const std::vector<double>& data);
+
 // Reads any image OpenImageIO can read, as stored (integer formats scaled to [0, 1],
 // no transfer function applied: POV-Ray's File_Gamma=1.0 PNGs are linear as read).
 // Throws InputError naming the path.

@@ -14,11 +14,14 @@ Interaction leaf() {
     return n;
 }
 
-Interaction mirror(const Vec3& color, const SurfaceHit& h, const Ray& ray) {
+Interaction mirror(const Vec3& color, const SurfaceHit& h, const Ray& ray, bool exact) {
     Interaction n;
     n.branch[0] = Branch{Ray{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()}, color, color.maxCoeff()};
     n.branches = 1;
     n.reflectance = color.maxCoeff();
+    // A perfect conductor: rs = −1, rp = +1 at every angle (the η → ∞ limit of Hecht's
+    // amplitudes), so the Mueller matrix is diag(1, 1, −1, −1) in the s/p frames.
+    if (exact) n.mueller[0] = polar::jones_diagonal_to_mueller(-1.0, 1.0);
     return n;
 }
 
@@ -88,12 +91,12 @@ Interaction interact(const material::Lambertian&, const SurfaceHit&, const Ray&,
 Interaction interact(const material::Emissive&, const SurfaceHit&, const Ray&, const InteractionContext&) {
     return leaf();
 }
-Interaction interact(const material::Mirror& m, const SurfaceHit& h, const Ray& ray, const InteractionContext&) {
-    return mirror(m.color, h, ray);
+Interaction interact(const material::Mirror& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    return mirror(m.color, h, ray, c.exact);
 }
 // Fuzz needs sampling: the tree takes the mirror direction.
-Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& ray, const InteractionContext&) {
-    return mirror(m.color, h, ray);
+Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    return mirror(m.color, h, ray, c.exact);
 }
 
 Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
@@ -112,8 +115,20 @@ Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const R
                                                    m.filter);
     Interaction n;
     n.reflectance = d.R;
-    n.branch[0] = Branch{Ray{h.hit.point, d.reflected}, Vec3::Constant(d.R), d.R};
     n.branches = 1;
+    if (c.exact) {
+        // The threshold keeps natural light's weights, so both models walk the same tree.
+        const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
+        n.branch[0] = Branch{Ray{h.hit.point, d.reflected}, Vec3(1, 1, 1), d.R};
+        n.mueller[0] = polar::mueller_reflection(cos_i, eta);
+        if (d.refracted && d.R < 1.0) {
+            n.branch[1] = Branch{Ray{h.hit.point, *d.refracted}, m.filter, d.transmit_bailout};
+            n.mueller[1] = *polar::mueller_transmission(cos_i, eta);
+            n.branches = 2;
+        }
+        return n;
+    }
+    n.branch[0] = Branch{Ray{h.hit.point, d.reflected}, Vec3::Constant(d.R), d.R};
     if (d.refracted && d.R < 1.0) {
         n.branch[1] = Branch{Ray{h.hit.point, *d.refracted}, d.transmit_factor, d.transmit_bailout};
         n.branches = 2;

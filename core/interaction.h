@@ -11,6 +11,7 @@
 
 #include "core/material.h"
 #include "core/optics.h"
+#include "core/polarisation.h"
 #include "core/random.h"
 #include "geometry/shapes.h"
 
@@ -41,6 +42,10 @@ struct Interaction {
     int branches = 0;           // branch[0]: reflection; branch[1]: refraction
     double reflectance = 0;     // dielectric: R used for the split (1 on TIR)
     bool split_mirror = false;  // POV-Ray dispersion split: branch[1] is a band's TIR mirror ray
+    // Exact polarisation (InteractionContext::exact): each branch's Mueller matrix in the
+    // interface's s/p frames (core/polarisation.h); `factor` then holds only the colour
+    // (filter, mirror tint), the Fresnel part being in the matrix.
+    std::array<polar::Mueller, 2> mueller;
 };
 
 // What a dielectric interaction depends on besides the hit.
@@ -49,6 +54,7 @@ struct InteractionContext {
     double adc = 0;       // POV-Ray: adc_bailout (local test of the refracted ray)
     double band_ior = 0;  // > 0: the index at one wavelength instead of `ior`
     bool split = false;   // POV-Ray: the band's share of an RGB ray splitting here
+    bool exact = false;   // exact polarisation: Mueller matrices on the branches
 };
 
 // Reflectance of a dielectric for its model at cos θi and relative index eta (Constant,

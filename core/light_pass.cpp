@@ -25,7 +25,9 @@ struct Accumulator {
 // Where a photon's branch ends: on a diffuse surface with a map, after at least one
 // specular interaction, it is deposited; an RGB photon splits into bands at its first
 // dispersive hit, each band carrying its weight.
+template <class P>
 struct PhotonEnds {
+    using Entry = TreeEntryT<P>;
     const Scene& scene;
     const SpectralContext& ctx;
     const IlluminationMaps& maps;
@@ -34,9 +36,13 @@ struct PhotonEnds {
     RenderStats& stats;
     std::uint64_t& deposits;
 
-    void background(const TreeEntry&) {}
+    void background(const Entry&) {}
 
-    void leaf(const TreeEntry& e, const SurfaceHit& h) {
+    // The photon's power: its colour weight, times S0 when it carries a Stokes vector.
+    static Vec3 power(const TreeEntryT<NaturalLight>& e) { return e.weight; }
+    static Vec3 power(const TreeEntryT<LightStokes>& e) { return e.weight * e.pol.S[0]; }
+
+    void leaf(const Entry& e, const SurfaceHit& h) {
         if (!h.material->diffuse_surface()) return;
         const size_t obj = static_cast<size_t>(h.object - scene.objects.data());
         if (e.depth == 0 || !maps.by_object[obj]) return;
@@ -49,28 +55,42 @@ struct PhotonEnds {
         // as the direct light would.
         const double D = e.travelled + h.hit.t;
         const double falloff = (D * D) / (dref * dref);
+        const Vec3 pw = power(e);
         for (int c = 0; c < 3; ++c)
             acc.sums[obj][3 * static_cast<size_t>(el) + c].fetch_add(
-                static_cast<std::int64_t>(std::llround(e.weight[c] * falloff * acc.scale)), std::memory_order_relaxed);
+                static_cast<std::int64_t>(std::llround(pw[c] * falloff * acc.scale)), std::memory_order_relaxed);
         ++deposits;
     }
 
-    double band_ior(const TreeEntry& e, const SurfaceHit& h) const {
+    double band_ior(const Entry& e, const SurfaceHit& h) const {
         return e.band < 0 ? 0.0 : ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
     }
 
-    bool intercept(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List& list) {
+    bool intercept(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, typename RayTreeWalkerT<P>::List& list) {
         const size_t mi = static_cast<size_t>(h.object->material);
         if (e.band >= 0 || !ctx.dispersive[mi]) return false;
         // First transparent hit: one ray per band, each with the band's weight.
         for (const int k : ctx.split_bands[mi]) {
             const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[static_cast<size_t>(k)][mi]);
-            for (int b = 0; b < in.branches; ++b)
-                w.push(e, h, in.branch[b], b == 1, list, ctx.weights[static_cast<size_t>(k)], k);
+            for (int b = 0; b < in.branches; ++b) w.push(e, h, in, b, b == 1, list, ctx.weights[static_cast<size_t>(k)], k);
         }
         return true;
     }
 };
+
+// A light's polarisation as a photon leaving along `dir` carries it (S0 = 1).
+LightStokes emitted(const PolarisationState& p, const Vec3& dir) {
+    Vec3 ref = p.reference - p.reference.dot(dir) * dir;
+    if (ref.norm() < 1e-9) ref = Vec3(1, 0, 0) - dir.x() * dir;  // the beam runs along the reference
+    LightStokes s;
+    s.x = ref.normalized();
+    switch (p.kind) {
+        case PolarisationState::Kind::Unpolarised: s.S = polar::unpolarised(1.0); break;
+        case PolarisationState::Kind::Linear: s.S = polar::linear(1.0, p.angle_deg * M_PI / 180.0); break;
+        case PolarisationState::Kind::Circular: s.S = polar::circular(1.0, p.handedness); break;
+    }
+    return s;
+}
 
 // The illumination map each shape gets: planes (a square under the transparent objects)
 // and meshes; none for spheres and polyhedra.
@@ -121,6 +141,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         Vec3 origin, axis, power;  // power: flux of one photon at the reference distance
         double cos_max, dref;
         std::uint64_t photons, stream;
+        size_t light;
     };
     std::vector<Emitter> emitters;
     double max_power = 0;
@@ -136,7 +157,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
             const double omega = 2.0 * M_PI * (1.0 - cos_max);
             const std::uint64_t n = std::max<std::uint64_t>(1, lp.photons / targets.size());
             const Vec3 power = L.color * (dref * dref * omega / static_cast<double>(n));
-            emitters.push_back({L.position, to / d, power, cos_max, dref, n, l * targets.size() + t});
+            emitters.push_back({L.position, to / d, power, cos_max, dref, n, l * targets.size() + t, l});
             max_power = std::fmax(max_power, power.cwiseAbs().maxCoeff() * static_cast<double>(n));
         }
     }
@@ -145,6 +166,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0};
     SceneTracer tracer(scene);
     const TreeLimits limits = ctx.limits(rs);
+    const bool exact = rs.polarisation == PolarisationModel::Exact;
 
     auto trace_photon = [&](const Emitter& em, std::uint64_t p, RenderStats& st, std::uint64_t& dep) {
         Rng rng(lp.seed, em.stream, p);
@@ -154,10 +176,18 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
         const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
         const Vec3 dir = (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized();
-        PhotonEnds ends{scene, ctx, *maps, acc, em.dref, st, dep};
-        RayTreeWalker walker(tracer, limits, st);
-        RayTreeWalker::List list{TreeEntry{Ray{em.origin, dir}, em.power}};
-        walker.walk(list, ends);
+        if (exact) {
+            RayTreeWalkerT<LightStokes> walker(tracer, limits, st);
+            PhotonEnds<LightStokes> ends{scene, ctx, *maps, acc, em.dref, st, dep};
+            RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{Ray{em.origin, dir}, em.power}};
+            list.front().pol = emitted(scene.lights[em.light].polarisation, dir);
+            walker.walk(list, ends);
+        } else {
+            RayTreeWalker walker(tracer, limits, st);
+            PhotonEnds<NaturalLight> ends{scene, ctx, *maps, acc, em.dref, st, dep};
+            RayTreeWalker::List list{TreeEntry{Ray{em.origin, dir}, em.power}};
+            walker.walk(list, ends);
+        }
     };
 
     constexpr std::uint64_t kChunk = 1024;

@@ -5,20 +5,26 @@
 // reflection/transmission limits, is dropped. The Fresnel-tree integrator, the spectral
 // eye pass and the light pass all walk their trees with this one walker; they differ only
 // in what happens where a branch ends (the `Ends` callbacks):
-//   void background(const TreeEntry&)              the branch left the scene
-//   void leaf(const TreeEntry&, const SurfaceHit&) it met a diffuse surface or an emitter
-//   bool intercept(RayTreeWalker&, const TreeEntry&, const SurfaceHit&, List&)
+//   void background(const Entry&)              the branch left the scene
+//   void leaf(const Entry&, const SurfaceHit&) it met a diffuse surface or an emitter
+//   bool intercept(Walker&, const Entry&, const SurfaceHit&, List&)
 //        before the hit's own interaction: true when the callback took the hit over
 //        (the spectral split at the first dispersive hit)
-//   double band_ior(const TreeEntry&, const SurfaceHit&)   the index at the entry's band
+//   double band_ior(const Entry&, const SurfaceHit&)   the index at the entry's band
 //        (0: the material's own)
+//
+// Polarisation rides on the entries as a payload P (core/polarisation_state.h): nothing
+// for natural light, the camera-side Mueller matrix for an eye pass, the photon's Stokes
+// vector for a light pass; the walker updates it with each branch's Mueller matrix.
 #include <deque>
 
+#include "core/polarisation_state.h"
 #include "core/tracer.h"
 
 namespace refract {
 
-struct TreeEntry {
+template <class P>
+struct TreeEntryT {
     Ray ray;
     Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
     double bailout = 1.0;  // the scalar the threshold is compared with
@@ -26,7 +32,9 @@ struct TreeEntry {
     int reflections = 0, transmissions = 0;
     int band = -1;         // spectral band of the ray; −1: an RGB ray
     double travelled = 0;  // path length from the tree's root to this ray's origin
+    P pol{};               // polarisation payload
 };
+using TreeEntry = TreeEntryT<NaturalLight>;
 
 struct TreeLimits {
     static constexpr int kUnlimited = 1 << 30;
@@ -43,11 +51,13 @@ inline TreeLimits tree_limits(const RenderSettings& s) {
     return l;
 }
 
-class RayTreeWalker {
+template <class P>
+class RayTreeWalkerT {
 public:
-    using List = std::deque<TreeEntry>;
+    using Entry = TreeEntryT<P>;
+    using List = std::deque<Entry>;
 
-    RayTreeWalker(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
+    RayTreeWalkerT(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
         : tracer_(tracer), limits_(limits), stats_(stats) {}
 
     const SceneTracer& tracer() const { return tracer_; }
@@ -59,7 +69,7 @@ public:
         std::uint64_t peak = list.size();
         while (!list.empty()) {
             // ⑤ take the oldest entry and find its first surface.
-            const TreeEntry e = list.front();
+            const Entry e = list.front();
             list.pop_front();
             const auto hit = tracer_.intersect(e.ray, stats_);
             if (!hit) {
@@ -74,19 +84,21 @@ public:
 
     // ②③④ the interaction at hit h: a leaf goes to the callback, branches to the list.
     template <class Ends>
-    void expand(const TreeEntry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
+    void expand(const Entry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
         const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior);
         if (in.leaf) {
             ends.leaf(e, h);
             return;
         }
-        for (int b = 0; b < in.branches; ++b) push(e, h, in.branch[b], b == 1, list);
+        for (int b = 0; b < in.branches; ++b) push(e, h, in, b, b == 1, list);
     }
 
-    // ⑥ a child with the parent's attenuation times the branch's factor (and `tint`, a
-    // band's weight), unless the threshold or a limit drops it. True when it was added.
-    bool push(const TreeEntry& e, const SurfaceHit& h, const Branch& br, bool transmitted, List& list,
+    // ⑥ a child along branch b of `in` with the parent's attenuation times the branch's
+    // factor (and `tint`, a band's weight), unless the threshold or a limit drops it.
+    // True when it was added.
+    bool push(const Entry& e, const SurfaceHit& h, const Interaction& in, int b, bool transmitted, List& list,
               const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
+        const Branch& br = in.branch[static_cast<size_t>(b)];
         const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
         if (a.bailout <= 0 || a.bailout < limits_.threshold) {
             ++stats_.pruned;
@@ -98,7 +110,8 @@ public:
             return false;
         }
         list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, e.depth + 1, refl, trans,
-                        band == -2 ? e.band : band, e.travelled + h.hit.t});
+                        band == -2 ? e.band : band, e.travelled + h.hit.t,
+                        descend(e.pol, h.normal, e.ray.dir, in.mueller[static_cast<size_t>(b)])});
         return true;
     }
 
@@ -107,5 +120,6 @@ private:
     TreeLimits limits_;
     RenderStats& stats_;
 };
+using RayTreeWalker = RayTreeWalkerT<NaturalLight>;
 
 }  // namespace refract

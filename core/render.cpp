@@ -76,6 +76,18 @@ void validate(const Scene& scene) {
     for (size_t k = 0; k < scene.objects.size(); ++k)
         if (scene.objects[k].material < 0 || scene.objects[k].material >= static_cast<int>(scene.materials.size()))
             throw InputError(f + ": /objects/" + std::to_string(k) + "/material: no such material");
+    const RenderSettings& s = scene.settings;
+    if (s.polarisation == PolarisationModel::Exact) {
+        const std::string where = f + ": /render/polarisation: ";
+        if (s.compat == Compat::PovRay)
+            throw InputError(where + "\"exact\" has no POV-Ray counterpart (compat \"povray\" is natural light)");
+        if (s.integrator != IntegratorKind::FresnelTree)
+            throw InputError(where + "\"exact\" needs the fresnel-tree integrator (or the spectral eye pass)");
+        for (const Material& m : scene.materials)
+            if (m.dielectric() && m.dielectric()->reflectance != ReflectanceModel::Fresnel)
+                throw InputError(f + ": material '" + m.name +
+                                 "': \"exact\" polarisation needs \"reflectance\": \"fresnel\" (the amplitudes)");
+    }
     for (const Material& m : scene.materials)
         if (m.dielectric() && !(m.dielectric()->ior > 0 && std::isfinite(m.dielectric()->ior)))
             throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
@@ -108,6 +120,33 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
     return spectral ? spectral->finish(sum / s.samples) : Vec3(sum / s.samples);
 }
 
+// Exact polarisation: the Stokes vectors of pixel (i, j), the samples averaged, S0
+// finished as the RGB image is.
+StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
+                       Ray& centre) {
+    const Scene& scene = tracer.scene();
+    const RenderSettings& s = scene.settings;
+    const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
+    StokesRGB sum = StokesRGB::Zero();
+    centre = scene.camera.ray(i + 0.5, j + 0.5);
+    for (int k = 0; k < s.samples; ++k) {
+        Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
+        double x = i + 0.5, y = j + 0.5;
+        if (s.jitter) {
+            x = i + rng.uniform();
+            y = j + rng.uniform();
+        }
+        const Ray ray = scene.camera.ray(x, y);
+        ++stats.primary_rays;
+        const EyeStokes start = camera_stokes(scene, ray);
+        sum += spectral ? spectral_stokes(tracer, *spectral, ray, start, stats)
+                        : fresnel_tree_stokes(tracer, ray, start, stats);
+    }
+    sum /= s.samples;
+    if (spectral) sum.row(0) = spectral->finish(sum.row(0).transpose()).transpose();
+    return sum;
+}
+
 }  // namespace
 
 Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
@@ -123,7 +162,10 @@ Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
             ctx->maps = maps.get();
         }
     }
-    const Vec3 v = pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr);
+    Ray centre;
+    const Vec3 v = scene.settings.polarisation == PolarisationModel::Exact
+                       ? Vec3(pixel_stokes(tracer, i, j, local, ctx ? &*ctx : nullptr, centre).row(0).transpose())
+                       : pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr);
     if (stats) stats->merge(local);
     return v;
 }
@@ -151,7 +193,12 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     }
     const SpectralContext* spectral = ctx ? &*ctx : nullptr;
     const int W = scene.camera.width, H = scene.camera.height;
-    RenderResult result{Image(W, H), {}};
+    RenderResult result{Image(W, H), {}, std::nullopt};
+    const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
+    if (exact) {
+        const size_t n = static_cast<size_t>(W) * H;
+        result.polarisation = PolarisationImages{std::vector<double>(12 * n), std::vector<double>(n), std::vector<double>(n)};
+    }
     constexpr int kTile = 16;
     const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
     std::vector<RenderStats> tile_stats(static_cast<size_t>(tiles_x) * tiles_y);
@@ -164,7 +211,20 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 RenderStats& st = tile_stats[static_cast<size_t>(ty) * tiles_x + tx];
                 for (int j = ty * kTile; j < std::min(H, (ty + 1) * kTile); ++j)
                     for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i)
-                        result.image.set(i, j, pixel_value(tracer, i, j, st, spectral));
+                        if (exact) {
+                            Ray centre;
+                            const StokesRGB sv = pixel_stokes(tracer, i, j, st, spectral, centre);
+                            result.image.set(i, j, sv.row(0).transpose());
+                            PolarisationImages& p = *result.polarisation;
+                            const size_t px = static_cast<size_t>(j) * W + i;
+                            for (int r = 0; r < 4; ++r)
+                                for (int c = 0; c < 3; ++c) p.stokes[12 * px + 3 * r + c] = sv(r, c);
+                            const LinearPolarisation lp = linear_polarisation(sv, scene, centre);
+                            p.dolp[px] = lp.dolp;
+                            p.aolp[px] = lp.aolp;
+                        } else {
+                            result.image.set(i, j, pixel_value(tracer, i, j, st, spectral));
+                        }
                 const int d = ++done;
                 if (opt.progress) {
                     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

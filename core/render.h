@@ -2,7 +2,9 @@
 // Rendering a scene: tiles over oneTBB, deterministic whatever the thread count.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "core/scene.h"
@@ -44,9 +46,19 @@ struct RenderOptions {
     std::shared_ptr<const IlluminationMaps> maps;
 };
 
+// Exact polarisation's images (render.polarisation "exact"): per pixel the Stokes vectors
+// S0..S3 of the R, G and B channels (12 values: S0.R, S0.G, S0.B, S1.R, ..., S3.B; S0 is
+// the image), and the degree and angle (radians, on the image from its right towards its
+// top) of linear polarisation of the channels' sum.
+struct PolarisationImages {
+    std::vector<double> stokes;
+    std::vector<double> dolp, aolp;
+};
+
 struct RenderResult {
     Image image;
     RenderStats stats;
+    std::optional<PolarisationImages> polarisation;
 };
 
 // Validates the scene (throws InputError) and renders it.

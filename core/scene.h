@@ -22,9 +22,24 @@ struct Object {
     int material = 0;  // index into Scene::materials
 };
 
+// A polarisation state (docs/polarisation.md): of a light's emission, or the state an
+// analyser in front of the camera passes.
+struct PolarisationState {
+    enum class Kind { Unpolarised, Linear, Circular };
+    Kind kind = Kind::Unpolarised;
+    // Linear: the angle of the electric field. A light's is measured about its beam from
+    // `reference` projected across the beam (default the world's y axis; x when the beam
+    // runs along y), towards ŷ = k̂ × x̂; an analyser's on the image, from its right
+    // towards its top.
+    double angle_deg = 0;
+    Vec3 reference{0, 1, 0};
+    int handedness = 1;  // Circular: sign of S3 (+1: left-circular in Born & Wolf's naming)
+};
+
 struct PointLight {
     Vec3 position{0, 10, 0};
     Vec3 color{1, 1, 1};  // no distance falloff (POV-Ray default)
+    PolarisationState polarisation;  // what the light pass's photons start with
 };
 
 struct Background {
@@ -62,6 +77,9 @@ struct LightPassSettings {
 };
 
 enum class IntegratorKind { Whitted, FresnelTree, Stochastic };
+// Natural: Yasuda's eq. 7 at every node, as if light were natural again after each
+// interface (and POV-Ray's model). Exact: Stokes vectors carried through Mueller matrices.
+enum class PolarisationModel { Natural, Exact };
 enum class Compat { Physical, PovRay };
 
 struct RenderSettings {
@@ -81,6 +99,8 @@ struct RenderSettings {
     Compat compat = Compat::Physical;
     SpectralSettings spectral;
     LightPassSettings light_pass;
+    PolarisationModel polarisation = PolarisationModel::Natural;
+    std::optional<PolarisationState> analyser;  // exact only: an ideal polariser before the camera
 };
 
 struct Scene {

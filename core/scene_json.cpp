@@ -312,8 +312,54 @@ LightPassSettings parse_light_pass(const JsonReader& r) {
     return s;
 }
 
+// {"type": "unpolarised" | "linear" | "circular", "angle": degrees, "reference": [x, y, z],
+// "handedness": "left" | "right"} (docs/polarisation.md).
+PolarisationState parse_polarisation_state(const JsonReader& r, bool reference) {
+    if (reference) r.only({"type", "angle", "reference", "handedness"});
+    else r.only({"type", "angle", "handedness"});
+    PolarisationState p;
+    const std::string type = r.string("type");
+    if (type == "unpolarised") p.kind = PolarisationState::Kind::Unpolarised;
+    else if (type == "linear") p.kind = PolarisationState::Kind::Linear;
+    else if (type == "circular") p.kind = PolarisationState::Kind::Circular;
+    else r.fail_at("type", "unknown polarisation '" + type + "' (unpolarised, linear, circular)");
+    if (p.kind != PolarisationState::Kind::Linear && r.has("angle")) r.fail_at("angle", "only for linear polarisation");
+    if (p.kind != PolarisationState::Kind::Circular && r.has("handedness"))
+        r.fail_at("handedness", "only for circular polarisation");
+    p.angle_deg = r.number("angle", 0.0);
+    if (!std::isfinite(p.angle_deg)) r.fail_at("angle", "must be a finite number of degrees");
+    if (reference) {
+        p.reference = r.vec3("reference", p.reference);
+        if (!(p.reference.norm() > 0) || !p.reference.allFinite()) r.fail_at("reference", "must be a non-zero vector");
+        p.reference.normalize();
+    }
+    const std::string hand = r.string("handedness", "left");
+    if (hand == "left") p.handedness = 1;
+    else if (hand == "right") p.handedness = -1;
+    else r.fail_at("handedness", "must be \"left\" (S3 > 0) or \"right\" (S3 < 0), Born & Wolf's naming");
+    return p;
+}
+
+void parse_polarisation(const JsonReader& r, RenderSettings& s) {
+    std::string model;
+    if (r.raw("polarisation").is_string()) {
+        model = r.string("polarisation");
+    } else {
+        const JsonReader p = r.child("polarisation");
+        p.only({"model", "analyser"});
+        model = p.string("model", "exact");
+        if (p.has("analyser")) s.analyser = parse_polarisation_state(p.child("analyser"), false);
+    }
+    if (model == "natural") s.polarisation = PolarisationModel::Natural;
+    else if (model == "exact") s.polarisation = PolarisationModel::Exact;
+    else r.fail_at("polarisation", "unknown model '" + model + "' (natural, exact)");
+    if (s.analyser && s.polarisation != PolarisationModel::Exact)
+        r.fail_at("polarisation", "an analyser needs the \"exact\" model");
+}
+
 RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
-    r.only({"integrator", "max_depth", "threshold", "samples", "jitter", "seed", "compat", "spectral", "light_pass"});
+    r.only({"integrator", "max_depth", "threshold", "samples", "jitter", "seed", "compat", "spectral", "light_pass",
+            "polarisation"});
     RenderSettings s;
     const std::string integ = r.string("integrator", "fresnel-tree");
     if (integ == "whitted") s.integrator = IntegratorKind::Whitted;
@@ -336,6 +382,7 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
     else r.fail_at("compat", "unknown mode '" + compat + "' (physical, povray)");
     if (r.has("spectral")) s.spectral = parse_spectral(r.child("spectral"), file);
     if (r.has("light_pass")) s.light_pass = parse_light_pass(r.child("light_pass"));
+    if (r.has("polarisation")) parse_polarisation(r, s);
     return s;
 }
 
@@ -375,10 +422,12 @@ Scene parse_scene(const json& j, const std::string& file) {
         for (size_t k = 0; k < ls.size(); ++k) {
             const JsonReader l(ls[k], file, "/lights/" + std::to_string(k));
             if (!ls[k].is_object()) l.fail("must be an object");
-            l.only({"type", "position", "color"});
+            l.only({"type", "position", "color", "polarisation"});
             const std::string type = l.string("type", "point");
             if (type != "point") l.fail_at("type", "unknown light type '" + type + "' (point)");
-            s.lights.push_back(PointLight{l.vec3("position"), l.vec3("color", Vec3(1, 1, 1))});
+            PointLight light{l.vec3("position"), l.vec3("color", Vec3(1, 1, 1)), {}};
+            if (l.has("polarisation")) light.polarisation = parse_polarisation_state(l.child("polarisation"), true);
+            s.lights.push_back(light);
         }
     }
     if (root.has("render")) s.settings = parse_settings(root.child("render"), file);

@@ -146,7 +146,7 @@ Interaction SceneTracer::interact(const SurfaceHit& h, const Ray& ray, RenderSta
                                   bool split) const {
     if (h.material->is<material::Dielectric>()) ++stats.tree_nodes;
     const InteractionContext c{scene_.settings.compat == Compat::PovRay, scene_.settings.pruning_threshold(), band_ior,
-                               split};
+                               split, scene_.settings.polarisation == PolarisationModel::Exact};
     return refract::interact(*h.material, h, ray, c);
 }
 

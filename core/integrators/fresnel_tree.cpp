@@ -6,27 +6,44 @@ namespace refract {
 
 namespace {
 
-// Where a branch ends: its weight times the light there is added to the pixel.
+// Where a branch ends: the light there, as the camera sees it along the branch, is added
+// to the pixel.
+template <class P>
 struct PixelEnds {
+    using Entry = TreeEntryT<P>;
     const SceneTracer& tracer;
     RenderStats& stats;
-    Vec3 pixel{0, 0, 0};  // the shading accumulator, 0 at the start
+    decltype(seen(P{}, Vec3(), Vec3())) pixel;  // the shading accumulator, 0 at the start
 
-    void background(const TreeEntry& e) { pixel += e.weight.cwiseProduct(tracer.background(e.ray.dir)); }
-    void leaf(const TreeEntry& e, const SurfaceHit& h) { pixel += e.weight.cwiseProduct(tracer.local_light(h, stats)); }
-    bool intercept(RayTreeWalker&, const TreeEntry&, const SurfaceHit&, RayTreeWalker::List&) { return false; }
-    double band_ior(const TreeEntry&, const SurfaceHit&) const { return 0.0; }
+    void background(const Entry& e) { pixel += seen(e.pol, e.weight, tracer.background(e.ray.dir)); }
+    void leaf(const Entry& e, const SurfaceHit& h) { pixel += seen(e.pol, e.weight, tracer.local_light(h, stats)); }
+    bool intercept(RayTreeWalkerT<P>&, const Entry&, const SurfaceHit&, typename RayTreeWalkerT<P>::List&) {
+        return false;
+    }
+    double band_ior(const Entry&, const SurfaceHit&) const { return 0.0; }
 };
+
+template <class P>
+auto walk_pixel(const SceneTracer& tracer, const Ray& primary, const P& start, RenderStats& stats) {
+    RayTreeWalkerT<P> walker(tracer, tree_limits(tracer.settings()), stats);
+    PixelEnds<P> ends{tracer, stats, {}};
+    ends.pixel.setZero();
+    // ① the primary ray, weight 1.
+    typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{primary, Vec3(1, 1, 1)}};
+    list.front().pol = start;
+    walker.walk(list, ends);
+    return ends.pixel;
+}
 
 }  // namespace
 
 Vec3 fresnel_tree_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats& stats) {
-    RayTreeWalker walker(tracer, tree_limits(tracer.settings()), stats);
-    PixelEnds ends{tracer, stats};
-    // ① the primary ray, weight 1.
-    RayTreeWalker::List list{TreeEntry{primary, Vec3(1, 1, 1)}};
-    walker.walk(list, ends);
-    return ends.pixel;
+    return walk_pixel(tracer, primary, NaturalLight{}, stats);
+}
+
+StokesRGB fresnel_tree_stokes(const SceneTracer& tracer, const Ray& primary, const EyeStokes& start,
+                              RenderStats& stats) {
+    return walk_pixel(tracer, primary, start, stats);
 }
 
 }  // namespace refract

@@ -95,15 +95,23 @@ SpectralContext SpectralContext::build(const Scene& scene) {
 namespace {
 
 // The spectral eye pass's branch ends; `sum` collects one walk's light.
+template <class P>
 class SpectralEnds {
 public:
-    SpectralEnds(const SceneTracer& t, const SpectralContext& c, RenderStats& s) : tracer_(t), ctx_(c), stats_(s) {}
+    using Walker = RayTreeWalkerT<P>;
+    using Entry = TreeEntryT<P>;
+    using List = typename Walker::List;
+    using Acc = decltype(seen(P{}, Vec3(), Vec3()));
 
-    Vec3 sum{0, 0, 0};
+    SpectralEnds(const SceneTracer& t, const SpectralContext& c, RenderStats& s) : tracer_(t), ctx_(c), stats_(s) {
+        sum.setZero();
+    }
 
-    void background(const TreeEntry& e) { sum += e.weight.cwiseProduct(tracer_.background(e.ray.dir)); }
+    Acc sum;
 
-    void leaf(const TreeEntry& e, const SurfaceHit& h) {
+    void background(const Entry& e) { sum += seen(e.pol, e.weight, tracer_.background(e.ray.dir)); }
+
+    void leaf(const Entry& e, const SurfaceHit& h) {
         Vec3 local = tracer_.local_light(h, stats_);
         const Material& m = *h.material;
         if (ctx_.maps && m.diffuse_surface()) {
@@ -112,15 +120,15 @@ public:
             const int obj = static_cast<int>(h.object - tracer_.scene().objects.data());
             local += (d ? d->diffuse : 1.0) * tracer_.pigment(pig, h.hit.point).cwiseProduct(ctx_.maps->irradiance(obj, h.hit));
         }
-        sum += e.weight.cwiseProduct(local);
+        sum += seen(e.pol, e.weight, local);
     }
 
-    double band_ior(const TreeEntry& e, const SurfaceHit& h) const {
+    double band_ior(const Entry& e, const SurfaceHit& h) const {
         return e.band < 0 ? 0.0 : ctx_.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
     }
 
     // An RGB ray at its first dispersive hit splits into bands.
-    bool intercept(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List& list) {
+    bool intercept(Walker& w, const Entry& e, const SurfaceHit& h, List& list) {
         if (e.band >= 0 || !ctx_.dispersive[static_cast<size_t>(h.object->material)]) return false;
         sum += split(w, e, h, list);
         return true;
@@ -128,18 +136,18 @@ public:
 
 private:
     // Walks `list` with fresh ends and returns its light.
-    Vec3 subwalk(RayTreeWalker& w, RayTreeWalker::List& list) {
+    Acc subwalk(Walker& w, List& list) {
         SpectralEnds sub(tracer_, ctx_, stats_);
         w.walk(list, sub);
         return sub.sum;
     }
 
     // The subtree below hit h traced at one band.
-    Vec3 band_tree(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, int band) {
+    Acc band_tree(Walker& w, const Entry& e, const SurfaceHit& h, int band) {
         const std::uint64_t before = stats_.segments;
-        TreeEntry eb = e;
+        Entry eb = e;
         eb.band = band;
-        RayTreeWalker::List list;
+        List list;
         SpectralEnds sub(tracer_, ctx_, stats_);
         w.expand(eb, h, ctx_.index[static_cast<size_t>(band)][static_cast<size_t>(h.object->material)], list, sub);
         w.walk(list, sub);
@@ -147,57 +155,57 @@ private:
         return sub.sum;
     }
 
-    Vec3 split(RayTreeWalker& w, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List& rgb_list) {
+    Acc split(Walker& w, const Entry& e, const SurfaceHit& h, List& rgb_list) {
         ++stats_.spectral_splits;
         const size_t mi = static_cast<size_t>(h.object->material);
+        Acc sum;
+        sum.setZero();
         if (ctx_.pov) {
             // POV-Ray: Fresnel and the reflected ray with the nominal index (stays RGB);
             // the refracted ray, when spawned, splits into bands, each with its own
             // direction and TIR test (core/interaction.cpp, `split`).
             const std::vector<int>& bands = ctx_.split_bands[mi];
             const Interaction first = tracer_.interact(h, e.ray, stats_, ctx_.index[static_cast<size_t>(bands[0])][mi], true);
-            if (first.branches > 0) w.push(e, h, first.branch[0], false, rgb_list);
-            if (first.branches < 2) return Vec3(0, 0, 0);  // nothing refracts
-            Vec3 sum(0, 0, 0);
+            if (first.branches > 0) w.push(e, h, first, 0, false, rgb_list);
+            if (first.branches < 2) return sum;  // nothing refracts
             // A band's TIR mirror ray is a full ray (it splits again), the same for every
             // band that meets TIR: traced once with the sum of their weights.
             Vec3 mirror_weight(0, 0, 0);
-            std::optional<Branch> mirror;
+            std::optional<Interaction> mirror;
             for (const int k : bands) {
                 const size_t kb = static_cast<size_t>(k);
                 const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
                 if (bn.split_mirror) {
-                    mirror = bn.branch[1];
+                    mirror = bn;
                     mirror_weight += ctx_.weights[kb];
                     continue;
                 }
                 const std::uint64_t before = stats_.segments;
-                RayTreeWalker::List list;
-                w.push(e, h, bn.branch[1], true, list, Vec3(1, 1, 1), k);
-                sum += ctx_.weights[kb].cwiseProduct(subwalk(w, list));
+                List list;
+                w.push(e, h, bn, 1, true, list, Vec3(1, 1, 1), k);
+                sum += tinted(ctx_.weights[kb], subwalk(w, list));
                 stats_.wavelength_segments += stats_.segments - before;
             }
             if (mirror) {
-                RayTreeWalker::List list;
-                w.push(e, h, *mirror, false, list);
-                sum += mirror_weight.cwiseProduct(subwalk(w, list));
+                List list;
+                w.push(e, h, *mirror, 1, false, list);
+                sum += tinted(mirror_weight, subwalk(w, list));
             }
             return sum;
         }
         if (ctx_.shortcut) {
             ++stats_.shortcut_tests;
             const int first = static_cast<int>(ctx_.bands());
-            const Vec3 c0 = band_tree(w, e, h, first), c1 = band_tree(w, e, h, first + 1),
-                       c2 = band_tree(w, e, h, first + 2);
-            const double d = std::fmax((c0 - c1).norm(), std::fmax((c1 - c2).norm(), (c0 - c2).norm()));
+            const Acc c0 = band_tree(w, e, h, first), c1 = band_tree(w, e, h, first + 1),
+                      c2 = band_tree(w, e, h, first + 2);
+            const Vec3 r0 = rgb_of(c0), r1 = rgb_of(c1), r2 = rgb_of(c2);
+            const double d = std::fmax((r0 - r1).norm(), std::fmax((r1 - r2).norm(), (r0 - r2).norm()));
             if (d < ctx_.shortcut_threshold) {
                 ++stats_.shortcut_taken;
                 return (c0 + c1 + c2) / 3.0;
             }
         }
-        Vec3 sum(0, 0, 0);
-        for (const int k : ctx_.split_bands[mi])
-            sum += ctx_.weights[static_cast<size_t>(k)].cwiseProduct(band_tree(w, e, h, k));
+        for (const int k : ctx_.split_bands[mi]) sum += tinted(ctx_.weights[static_cast<size_t>(k)], band_tree(w, e, h, k));
         return sum;
     }
 
@@ -205,6 +213,17 @@ private:
     const SpectralContext& ctx_;
     RenderStats& stats_;
 };
+
+template <class P>
+auto walk_spectral(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary, const P& start,
+                   RenderStats& stats) {
+    RayTreeWalkerT<P> walker(tracer, ctx.limits(tracer.settings()), stats);
+    SpectralEnds<P> ends(tracer, ctx, stats);
+    typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{primary, Vec3(1, 1, 1)}};
+    list.front().pol = start;
+    walker.walk(list, ends);
+    return ends.sum;
+}
 
 }  // namespace
 
@@ -217,11 +236,12 @@ TreeLimits SpectralContext::limits(const RenderSettings& s) const {
 
 Vec3 spectral_radiance(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
                        RenderStats& stats) {
-    RayTreeWalker walker(tracer, ctx.limits(tracer.settings()), stats);
-    SpectralEnds ends(tracer, ctx, stats);
-    RayTreeWalker::List list{TreeEntry{primary, Vec3(1, 1, 1)}};
-    walker.walk(list, ends);
-    return ends.sum;
+    return walk_spectral(tracer, ctx, primary, NaturalLight{}, stats);
+}
+
+StokesRGB spectral_stokes(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
+                          const EyeStokes& start, RenderStats& stats) {
+    return walk_spectral(tracer, ctx, primary, start, stats);
 }
 
 }  // namespace refract

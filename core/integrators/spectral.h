@@ -62,5 +62,8 @@ struct SpectralContext {
 // Radiance (RGB, not yet finished) along a primary ray.
 Vec3 spectral_radiance(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
                        RenderStats& stats);
+// The same with exact polarisation: Stokes vectors per colour channel (not yet finished).
+StokesRGB spectral_stokes(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
+                          const EyeStokes& start, RenderStats& stats);
 
 }  // namespace refract

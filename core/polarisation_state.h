@@ -1,0 +1,75 @@
+#pragma once
+// The polarisation a ray-tree branch carries (core/ray_tree.h), one type per model, and
+// how each is carried across an interface (`descend`). Conventions: core/polarisation.h.
+//
+// Every branch's Stokes frame is x̂ = ŝ of the interface it came from: ŝ = n × d is
+// perpendicular to the plane of incidence, so it is across both the incoming and the
+// outgoing ray, and the interface's Mueller matrix needs no rotation on its own side.
+// Only the rotation from the previous frame to this ŝ is applied.
+#include <Eigen/Core>
+
+#include "core/polarisation.h"
+
+namespace refract {
+
+struct Scene;
+
+// Natural light (Yasuda eq. 7 at every node): nothing to carry.
+struct NaturalLight {};
+inline NaturalLight descend(const NaturalLight&, const Vec3&, const Vec3&, const polar::Mueller&) { return {}; }
+
+// Eye pass: `C` maps the Stokes vector of light arriving at this ray's origin from its
+// direction (propagating along −dir, in frame x) to what the camera records (its frame,
+// after the analyser). Light leaving a surface into the branch contributes C·S.
+struct EyeStokes {
+    polar::Mueller C = polar::Mueller::Identity();
+    Vec3 x{1, 0, 0};
+};
+// At a hit with normal n of the ray `dir` (parent), the child's matrix is
+// C · R(ŝ → x about −dir) · M, where M is the interface's Mueller matrix for light going
+// from the child's ray into the parent's (reflection and transmission are reciprocal).
+inline EyeStokes descend(const EyeStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M) {
+    const Vec3 k = -dir;  // the light's direction on the parent's segment
+    const Vec3 s = polar::s_axis(n, k, p.x);
+    return {p.C * polar::rotator(polar::frame_angle(s, p.x, k)) * M, s};
+}
+
+// Light pass: the photon's Stokes vector (S0 = 1 at the light; the power is in the
+// entry's weight) in frame x, propagating along the ray.
+struct LightStokes {
+    polar::Stokes S = polar::unpolarised(1.0);
+    Vec3 x{1, 0, 0};
+};
+inline LightStokes descend(const LightStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M) {
+    const Vec3 s = polar::s_axis(n, dir, p.x);
+    return {M * (polar::rotator(polar::frame_angle(p.x, s, dir)) * p.S), s};
+}
+
+// The Stokes vectors of the three colour channels, one per column (S0 row = RGB).
+using StokesRGB = Eigen::Matrix<double, 4, 3>;
+
+// Light L (RGB, unpolarised) reaching the camera along an entry with colour weight w.
+inline Vec3 seen(const NaturalLight&, const Vec3& w, const Vec3& L) { return w.cwiseProduct(L); }
+inline StokesRGB seen(const EyeStokes& p, const Vec3& w, const Vec3& L) {
+    return p.C.col(0) * w.cwiseProduct(L).transpose();
+}
+
+// A band's RGB weight applied to its light; the RGB part of a result.
+inline Vec3 tinted(const Vec3& w, const Vec3& v) { return w.cwiseProduct(v); }
+inline StokesRGB tinted(const Vec3& w, const StokesRGB& v) { return v * w.asDiagonal(); }
+inline Vec3 rgb_of(const Vec3& v) { return v; }
+inline Vec3 rgb_of(const StokesRGB& v) { return v.row(0).transpose(); }
+
+// The camera's side of a primary ray: frame x̂ = the image's right across the ray, and the
+// scene's analyser (render.polarisation.analyser; its angle is measured on the image from
+// the right towards the top) as the starting matrix.
+EyeStokes camera_stokes(const Scene& scene, const Ray& primary);
+
+// Degree and angle of linear polarisation of a pixel's Stokes vectors, from the sum of
+// the three channels; the angle on the image, from its right towards its top (radians).
+struct LinearPolarisation {
+    double dolp, aolp;
+};
+LinearPolarisation linear_polarisation(const StokesRGB& s, const Scene& scene, const Ray& primary);
+
+}  // namespace refract
