@@ -46,8 +46,15 @@ Interaction mirror(const Vec3& color, const SurfaceHit& h, const Ray& ray, bool 
 // is made from the incoming ray (TraceRefractionRay → ComputeReflection), so it is
 // not one band but a full ray that splits again at its next dispersive hit. A ray that is
 // already one band (`band`) follows the rule above with its own index.
+//
+// Absorption (trace.cpp ComputeLightedTexture): at a hit from inside an interior with
+// fading, only the light of the refraction computation is faded, over the last segment:
+// the refracted ray, the mirror ray that a refraction meeting TIR turns into, a band's
+// TIR mirror at the split; not the reflected branch, and not the adc weight. So a path
+// fades over the segments that end in a transmission only.
 Interaction dielectric_pov(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, double cos_i,
                            double eta, const std::optional<Vec3>& refr, bool band, bool split, double adc) {
+    const Vec3 fade = !h.entering && m.absorption ? pov_fade(m.absorption->rgb, h.hit.t) : Vec3(1, 1, 1);
     double R = dielectric_reflectance(m.reflectance, m.constant_reflectivity, cos_i, eta);
     // A band ray (dispersion) keeps the nominal index's R even where its own index meets
     // total internal reflection; the refracted ray then turns into the mirror ray below.
@@ -59,13 +66,13 @@ Interaction dielectric_pov(const material::Dielectric& m, const SurfaceHit& h, c
     n.reflectance = R;
     if (trans > adc && !refr && split) {  // a band's total internal reflection at the split
         n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
-        n.branch[1] = Branch{reflected, filter, filter.cwiseAbs().maxCoeff()};
+        n.branch[1] = Branch{reflected, filter.cwiseProduct(fade), filter.cwiseAbs().maxCoeff()};
         n.branches = 2;
         n.split_mirror = true;
         return n;
     }
     if (trans > adc && !refr) {  // the refracted ray turns into total internal reflection
-        n.branch[0] = Branch{reflected, Vec3(1, 1, 1), filter.cwiseAbs().maxCoeff()};
+        n.branch[0] = Branch{reflected, fade, filter.cwiseAbs().maxCoeff()};
         n.branches = 1;
         n.reflectance = 1.0;
         return n;
@@ -73,13 +80,23 @@ Interaction dielectric_pov(const material::Dielectric& m, const SurfaceHit& h, c
     n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
     n.branches = 1;
     if (trans > adc) {
-        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, filter, filter.cwiseAbs().maxCoeff()};
+        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, filter.cwiseProduct(fade), filter.cwiseAbs().maxCoeff()};
         n.branches = 2;
     }
     return n;
 }
 
 }  // namespace
+
+Vec3 pov_fade(const Vec3& alpha, double distance) {
+    Vec3 f;
+    for (int c = 0; c < 3; ++c) {
+        const float colour = static_cast<float>(1.0 - alpha[c]);  // fade_color, stored as float
+        const float x = static_cast<float>(static_cast<float>(1.0f - colour) * distance);  // D = 1
+        f[c] = static_cast<double>(static_cast<float>(std::exp(-static_cast<double>(x))));
+    }
+    return f;
+}
 
 Interaction interact(const material::Diffuse&, const SurfaceHit&, const Ray&, const InteractionContext&) {
     return leaf();

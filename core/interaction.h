@@ -132,6 +132,12 @@ Attenuation<V> attenuate(const V& weight, typename V::Scalar bailout, const V& f
     return {weight.cwiseProduct(factor), bailout * bailout_factor};
 }
 
+// POV-Ray 3.7's interior fading as the exporter writes absorption (fade_distance 1,
+// fade_power 1001: the exponential form, fade_color 1 − α per channel; trace.cpp
+// ComputeLightedTexture): f = exp(−(1 − C)·d/D) with C and D stored in single precision
+// and the product and exp rounded to single precision, over a segment of length d.
+Vec3 pov_fade(const Vec3& alpha, double distance);
+
 // The interaction of each kind at hit h of `ray`.
 Interaction interact(const material::Diffuse& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 Interaction interact(const material::Lambertian& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);

@@ -62,6 +62,10 @@ struct PhotonEnds {
         ++deposits;
     }
 
+    double wavelength(const Entry& e) const {
+        return e.band < 0 ? 0.0 : ctx.all_wavelengths[static_cast<size_t>(e.band)];
+    }
+
     double band_ior(const Entry& e, const SurfaceHit& h) const {
         return e.band < 0 ? 0.0 : ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
     }

@@ -6,6 +6,7 @@
 #include <string>
 #include <variant>
 
+#include "core/spectrum/absorption.h"
 #include "core/spectrum/dispersion.h"
 #include "geometry/ray.h"
 
@@ -71,6 +72,8 @@ struct Dielectric {
     // Index as a function of wavelength (catalogue name or model in the scene file);
     // `ior` stays the nominal index (Dispersion::nominal() when `ior` is absent).
     std::optional<spectrum::Dispersion> dispersion;
+    // Beer–Lambert absorption inside (per scene unit); none: clear.
+    std::optional<spectrum::Absorption> absorption;
 };
 
 }  // namespace material

@@ -12,6 +12,8 @@
 //        (the spectral split at the first dispersive hit)
 //   double band_ior(const Entry&, const SurfaceHit&)   the index at the entry's band
 //        (0: the material's own)
+//   double wavelength(const Entry&)    the entry's wavelength in nm (0: an RGB ray), for
+//        the absorption along a segment inside a dielectric (Beer–Lambert)
 //
 // Polarisation rides on the entries as a payload P (core/polarisation_state.h): nothing
 // for natural light, the camera-side Mueller matrix for an eye pass, the photon's Stokes
@@ -69,12 +71,16 @@ public:
         std::uint64_t peak = list.size();
         while (!list.empty()) {
             // ⑤ take the oldest entry and find its first surface.
-            const Entry e = list.front();
+            Entry e = list.front();
             list.pop_front();
             const auto hit = tracer_.intersect(e.ray, stats_);
             if (!hit) {
                 ends.background(e);
                 continue;
+            }
+            if (const auto a = tracer_.absorption(*hit, ends.wavelength(e))) {
+                e.weight = e.weight.cwiseProduct(*a);
+                e.bailout *= a->maxCoeff();
             }
             if (!ends.intercept(*this, e, *hit, list)) expand(e, *hit, ends.band_ior(e, *hit), list, ends);
             if (list.size() > peak) peak = list.size();

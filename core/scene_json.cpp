@@ -78,7 +78,7 @@ Pigment parse_pigment(const JsonReader& r) {
 }
 
 material::Dielectric parse_dielectric(const JsonReader& r, const std::string& file) {
-    r.only({"type", "ior", "reflectance", "reflectivity", "filter", "dispersion"});
+    r.only({"type", "ior", "reflectance", "reflectivity", "filter", "dispersion", "absorption"});
     material::Dielectric m;
     m.ior = r.number("ior", 1.5);
     if (!(m.ior > 0)) r.fail_at("ior", "must be > 0 (got " + std::to_string(m.ior) + ")");
@@ -102,6 +102,8 @@ material::Dielectric parse_dielectric(const JsonReader& r, const std::string& fi
         m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
         if (!r.has("ior")) m.ior = m.dispersion->nominal();
     }
+    if (r.has("absorption"))
+        m.absorption = spectrum::parse_absorption(r.raw("absorption"), file + ": " + r.path_of("absorption"));
     return m;
 }
 

@@ -115,6 +115,8 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) cons
         const auto* glass = best_m->dielectric();
         if (!glass) return Vec3(0, 0, 0);
         t = t.cwiseProduct(glass->filter);
+        // Leaving a fading interior: its fade over the chord (ComputeShadowTexture).
+        if (glass->absorption && best->normal.dot(dir) > 0) t = t.cwiseProduct(pov_fade(glass->absorption->rgb, best->t));
         origin = best->point;
         remaining -= best->t;
     }
@@ -132,6 +134,16 @@ Vec3 SceneTracer::shade_diffuse(const SurfaceHit& h, const Pigment& pigment_, do
         c += diffuse * cos_l * pig.cwiseProduct(l.color).cwiseProduct(tr);
     }
     return c;
+}
+
+std::optional<Vec3> SceneTracer::absorption(const SurfaceHit& h, double wavelength_nm) const {
+    if (h.entering || scene_.settings.compat == Compat::PovRay) return std::nullopt;
+    const auto* d = h.material->dielectric();
+    if (!d || !d->absorption) return std::nullopt;
+    const double t = h.hit.t;
+    if (wavelength_nm > 0) return Vec3::Constant(optics::beer_lambert(d->absorption->at(wavelength_nm), t));
+    const Vec3& a = d->absorption->rgb;
+    return Vec3(optics::beer_lambert(a.x(), t), optics::beer_lambert(a.y(), t), optics::beer_lambert(a.z(), t));
 }
 
 Vec3 SceneTracer::local_light(const SurfaceHit& h, RenderStats& stats) const {

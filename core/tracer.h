@@ -32,6 +32,13 @@ public:
     Interaction interact(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior = 0,
                          bool split = false) const;
 
+    // Beer–Lambert over the segment that ended at h from inside an absorbing dielectric
+    // (physical mode): exp(−α t) per channel, at `wavelength_nm` (all channels alike) or,
+    // when 0, with the material's RGB coefficients. Empty when nothing is absorbed. A
+    // segment lies in the material of the object it leaves, so absorbing solids must not
+    // hold other objects. POV-Ray mode fades the way POV-Ray does, in the interaction.
+    std::optional<Vec3> absorption(const SurfaceHit& h, double wavelength_nm) const;
+
     // The light a leaf sends back along the ray: direct lighting of a diffuse (or, in the
     // tree integrators, Lambertian) surface, an emitter's colour; 0 for other kinds.
     Vec3 local_light(const SurfaceHit& h, RenderStats& stats) const;

@@ -116,6 +116,7 @@ struct TirCounter {
     void background(const TreeEntry&) {}
     void leaf(const TreeEntry&, const SurfaceHit&) {}
     double band_ior(const TreeEntry&, const SurfaceHit&) const { return 0.0; }
+    double wavelength(const TreeEntry&) const { return 0.0; }
     bool intercept(RayTreeWalker&, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List&) {
         if (const auto* d = h.material->dielectric()) {
             const double eta = h.entering ? d->ior : 1.0 / d->ior;

@@ -211,7 +211,8 @@ bool same_dispersion(const material::Dielectric& a, const material::Dielectric& 
 
 bool same_optics(const material::Dielectric& a, const material::Dielectric& b) {
     return a.ior == b.ior && a.filter == b.filter && a.reflectance == b.reflectance &&
-           a.constant_reflectivity == b.constant_reflectivity && same_dispersion(a, b);
+           a.constant_reflectivity == b.constant_reflectivity && same_dispersion(a, b) &&
+           a.absorption.has_value() == b.absorption.has_value() && (!a.absorption || a.absorption->rgb == b.absorption->rgb);
 }
 
 // Groups of transparent objects exported as one POV-Ray object each (one interior):
@@ -319,6 +320,14 @@ std::string interior(const material::Dielectric& m) {
     if (m.dispersion && m.dispersion->is_povray() && m.dispersion->dispersive()) {
         const auto& p = std::get<spectrum::PovRayModel>(m.dispersion->model);
         s += " dispersion " + pov_number(p.dispersion) + " dispersion_samples " + std::to_string(p.samples);
+    }
+    // Absorption: the exponential fade (fade_power >= 1000), exp(−(1 − C)·d/D) per
+    // channel, with D = 1 and C = 1 − α (core/interaction.h pov_fade). POV-Ray fades only
+    // the segments that end in a transmission, which compat mode reproduces.
+    if (m.absorption) {
+        const Vec3& a = m.absorption->rgb;
+        s += " fade_distance 1 fade_power 1001 fade_color rgb <" + pov_number(1.0 - a.x()) + ", " +
+             pov_number(1.0 - a.y()) + ", " + pov_number(1.0 - a.z()) + ">";
     }
     return s + " }";
 }

@@ -21,6 +21,7 @@ struct PixelEnds {
         return false;
     }
     double band_ior(const Entry&, const SurfaceHit&) const { return 0.0; }
+    double wavelength(const Entry&) const { return 0.0; }
 };
 
 template <class P>

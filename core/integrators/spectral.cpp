@@ -73,6 +73,7 @@ SpectralContext SpectralContext::build(const Scene& scene) {
     }
     std::vector<double> all = c.wavelengths;
     all.insert(all.end(), s.shortcut_wavelengths.begin(), s.shortcut_wavelengths.end());
+    c.all_wavelengths = all;
     c.index.assign(all.size(), std::vector<double>(materials, 0.0));
     for (size_t mi = 0; mi < materials; ++mi) {
         if (!c.dispersive[mi]) continue;
@@ -121,6 +122,10 @@ public:
             local += (d ? d->diffuse : 1.0) * tracer_.pigment(pig, h.hit.point).cwiseProduct(ctx_.maps->irradiance(obj, h.hit));
         }
         sum += seen(e.pol, e.weight, local);
+    }
+
+    double wavelength(const Entry& e) const {
+        return e.band < 0 ? 0.0 : ctx_.all_wavelengths[static_cast<size_t>(e.band)];
     }
 
     double band_ior(const Entry& e, const SurfaceHit& h) const {

@@ -34,6 +34,7 @@ struct SpectralContext {
     // another (a set's weights sum to POV-Ray's mean hue, about (1, 1, 1)).
     std::vector<double> wavelengths;        // nm, per band
     std::vector<Vec3> weights;              // RGB weight of each band in its split
+    std::vector<double> all_wavelengths;    // nm, per band of `index` (the bands, then the shortcut's)
     // index[b][material]: the material's index at band b's wavelength (0: not dispersive,
     // use `ior`); bands 0..n−1 are `wavelengths`, n..n+2 the shortcut wavelengths.
     std::vector<std::vector<double>> index;

@@ -10,6 +10,7 @@ Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng
     for (int depth = 0;; ++depth) {
         const auto hit = tracer.intersect(ray, stats);
         if (!hit) return radiance + throughput.cwiseProduct(tracer.background(ray.dir));
+        if (const auto a = tracer.absorption(*hit, 0.0)) throughput = throughput.cwiseProduct(*a);  // Beer–Lambert
         const Material& m = *hit->material;
         const bool random_scatter = m.is<material::Lambertian>() || m.is<material::Metal>();
         if (depth + 1 > s.max_depth) {

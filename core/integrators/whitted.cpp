@@ -1,5 +1,6 @@
 #include "core/integrators/whitted.h"
 
+#include <optional>
 #include <vector>
 
 namespace refract {
@@ -9,6 +10,7 @@ struct StoredNode {
     Vec3 local{0, 0, 0};
     int child[2] = {-1, -1};
     Vec3 factor[2];
+    std::optional<Vec3> absorbed;  // Beer–Lambert over the ray that reached this node
 };
 
 }  // namespace
@@ -30,6 +32,7 @@ Vec3 whitted_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats
             tree[k].local = tracer.background(p.ray.dir);
             continue;
         }
+        tree[k].absorbed = tracer.absorption(*hit, 0.0);
         const Interaction n = tracer.interact(*hit, p.ray, stats);
         if (n.leaf) tree[k].local = tracer.local_light(*hit, stats);
         for (int b = 0; b < n.branches; ++b) {
@@ -50,7 +53,7 @@ Vec3 whitted_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats
         Vec3 v = tree[k].local;
         for (int b = 0; b < 2; ++b)
             if (tree[k].child[b] >= 0) v += tree[k].factor[b].cwiseProduct(I[tree[k].child[b]]);
-        I[k] = v;
+        I[k] = tree[k].absorbed ? Vec3(tree[k].absorbed->cwiseProduct(v)) : v;
     }
     return I[0];
 }
