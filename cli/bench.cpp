@@ -1,6 +1,11 @@
 // refract bench: the Ohtsuka & Kawai 1998 diamond timed with refract and with POV-Ray 3.7
 // on the matching exported scene (docs/performance.md).
+#include <algorithm>
+#include <cstdlib>
 #include <iomanip>
+#include <vector>
+
+#include <sys/resource.h>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -22,7 +27,61 @@ struct Args {
     double timeout = 900;
     bool no_povray = false;
     bool no_photons = false;
+    int polarisation_pairs = 0;
 };
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// Natural against exact polarisation on the same scene, in pairs (natural, exact, natural,
+// exact, ...): wall and CPU time of each render, median and min, the ratio per pair, and
+// the load average before and after.
+void compare_polarisation(const nlohmann::json& scene, const refract::RenderOptions& opt, int pairs) {
+    using namespace refract;
+    double load[3] = {0, 0, 0};
+    if (getloadavg(load, 3) > 0)
+        std::cout << "  load average before: " << std::setprecision(2) << load[0] << " " << load[1] << " " << load[2] << "\n";
+    nlohmann::json ej = scene;
+    ej["render"]["polarisation"] = "exact";
+    const Scene natural = experiments::scene_from_json(scene, "bench natural");
+    const Scene exact = experiments::scene_from_json(ej, "bench exact");
+    std::vector<double> wall[2], cpu[2], ratio_wall, ratio_cpu;
+    for (int k = 0; k < pairs; ++k)
+        for (int m = 0; m < 2; ++m) {
+            const double c0 = cpu_seconds();
+            const RenderResult r = render(m == 0 ? natural : exact, opt);
+            wall[m].push_back(r.stats.seconds);
+            cpu[m].push_back(cpu_seconds() - c0);
+            if (m == 1) {
+                ratio_wall.push_back(wall[1].back() / wall[0].back());
+                ratio_cpu.push_back(cpu[1].back() / cpu[0].back());
+            }
+        }
+    auto row = [](const std::string& what, const std::vector<double>& v) {
+        std::cout << "  " << std::left << std::setw(40) << what << std::right << std::fixed << std::setprecision(3)
+                  << " median " << std::setw(8) << median(v) << "  min " << std::setw(8)
+                  << *std::min_element(v.begin(), v.end()) << "\n";
+    };
+    row("natural light + eye pass, wall (s)", wall[0]);
+    row("exact light + eye pass, wall (s)", wall[1]);
+    row("natural light + eye pass, CPU (s)", cpu[0]);
+    row("exact light + eye pass, CPU (s)", cpu[1]);
+    row("exact / natural per pair, wall", ratio_wall);
+    row("exact / natural per pair, CPU", ratio_cpu);
+    std::cout << "  target: exact <= 1.5x natural (CPU median " << std::setprecision(2) << median(ratio_cpu)
+              << "x: " << (median(ratio_cpu) <= 1.5 ? "met" : "missed") << ")\n";
+    if (getloadavg(load, 3) > 0)
+        std::cout << "  load average after: " << std::setprecision(2) << load[0] << " " << load[1] << " " << load[2] << "\n";
+}
 
 void line(const std::string& what, double seconds, const std::string& extra = "") {
     std::cout << "  " << std::left << std::setw(52) << what << std::right << std::setw(10) << std::fixed
@@ -42,6 +101,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900)");
     sub->add_flag("--no-povray", a->no_povray, "Time refract only");
     sub->add_flag("--no-photons", a->no_photons, "Skip the light pass against POV-Ray photons");
+    sub->add_option("--polarisation-pairs", a->polarisation_pairs,
+                    "Only time natural against exact polarisation, in N pairs (natural, exact, ...)")
+        ->check(CLI::Range(1, 100));
     sub->callback([a] {
         using namespace refract;
         namespace oh = experiments::ohtsuka1998;
@@ -60,6 +122,10 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
         opt.threads = a->threads;
         std::cout << "Ohtsuka & Kawai 1998 diamond, " << p.width << "x" << p.height << ", " << a->threads
                   << " threads\n";
+        if (a->polarisation_pairs > 0) {
+            compare_polarisation(oh::scene_json(p), opt, a->polarisation_pairs);
+            return;
+        }
         // refract, physical: light pass + eye pass, full spectral split (31 wavelengths).
         const Scene phys = experiments::scene_from_json(oh::scene_json(p), "bench scene");
         const RenderResult full = render(phys, opt);

@@ -78,7 +78,7 @@ Absorption absorption_catalogue(const std::string& name, double unit_cm) {
     if (key == "emerald")  // Cr3+ in beryl: ~430 and ~610 nm
         return from_bands({{430, 60, 3.0}, {610, 80, 3.5}}, 0.05, "emerald (model: Cr3+ bands at 430, 610 nm)", unit_cm);
     if (key == "green-glass")  // Fe3+ near 380 nm, the short-wave tail of the Fe2+ band at 1050 nm
-        return from_bands({{380, 60, 1.5}, {1050, 600, 2.5}}, 0.02,
+        return from_bands({{380, 150, 2.0}, {1050, 600, 3.0}}, 0.02,
                           "green glass (model: Fe3+ at 380 nm, Fe2+ at 1050 nm)", unit_cm);
     std::string names;
     for (const auto& n : absorption_catalogue_names()) names += (names.empty() ? "" : ", ") + n;
