@@ -18,6 +18,7 @@
 // Polarisation rides on the entries as a payload P (core/polarisation_state.h): nothing
 // for natural light, the camera-side Mueller matrix for an eye pass, the photon's Stokes
 // vector for a light pass; the walker updates it with each branch's Mueller matrix.
+#include <cstdint>
 #include <deque>
 
 #include "core/polarisation_state.h"
@@ -30,11 +31,13 @@ struct TreeEntryT {
     Ray ray;
     Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
     double bailout = 1.0;  // the scalar the threshold is compared with
-    int depth = 0;         // surface interactions before this ray
-    int reflections = 0, transmissions = 0;
-    int band = -1;         // spectral band of the ray; −1: an RGB ray
-    double travelled = 0;  // path length from the tree's root to this ray's origin
-    P pol{};               // polarisation payload
+    // Counters in 16 bits (max_depth <= 10000, bands <= 1003): a list entry of the
+    // natural-light walk stays 96 bytes, as the walks it replaced.
+    std::int16_t depth = 0;  // surface interactions before this ray
+    std::int16_t reflections = 0, transmissions = 0;
+    std::int16_t band = -1;  // spectral band of the ray; −1: an RGB ray
+    double travelled = 0;    // path length from the tree's root to this ray's origin
+    [[no_unique_address]] P pol{};  // polarisation payload (none for natural light)
 };
 using TreeEntry = TreeEntryT<NaturalLight>;
 
@@ -78,9 +81,11 @@ public:
                 ends.background(e);
                 continue;
             }
-            if (const auto a = tracer_.absorption(*hit, ends.wavelength(e))) {
-                e.weight = e.weight.cwiseProduct(*a);
-                e.bailout *= a->maxCoeff();
+            if (tracer_.absorbing() && !hit->entering) {  // Beer–Lambert over the segment inside
+                if (const auto a = tracer_.absorption(*hit, ends.wavelength(e))) {
+                    e.weight = e.weight.cwiseProduct(*a);
+                    e.bailout *= a->maxCoeff();
+                }
             }
             if (!ends.intercept(*this, e, *hit, list)) expand(e, *hit, ends.band_ior(e, *hit), list, ends);
             if (list.size() > peak) peak = list.size();
@@ -115,8 +120,9 @@ public:
             ++stats_.depth_limited;
             return false;
         }
-        list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, e.depth + 1, refl, trans,
-                        band == -2 ? e.band : band, e.travelled + h.hit.t,
+        list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
+                        static_cast<std::int16_t>(refl), static_cast<std::int16_t>(trans),
+                        static_cast<std::int16_t>(band == -2 ? e.band : band), e.travelled + h.hit.t,
                         descend(e.pol, h.normal, e.ray.dir, in.mueller[static_cast<size_t>(b)])});
         return true;
     }

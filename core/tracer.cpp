@@ -17,6 +17,8 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {
         for (const Object& obj : scene.objects)
             if (!pov || scene.materials[obj.material].is<material::Dielectric>() == (pass == 1))
                 order_.push_back(&obj);
+    for (const Material& m : scene.materials)
+        absorbing_ = absorbing_ || (!pov && m.dielectric() && m.dielectric()->absorption);
 }
 
 std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& stats) const {

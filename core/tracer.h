@@ -38,6 +38,8 @@ public:
     // segment lies in the material of the object it leaves, so absorbing solids must not
     // hold other objects. POV-Ray mode fades the way POV-Ray does, in the interaction.
     std::optional<Vec3> absorption(const SurfaceHit& h, double wavelength_nm) const;
+    // Whether any segment can be absorbed (physical mode, a dielectric with absorption).
+    bool absorbing() const { return absorbing_; }
 
     // The light a leaf sends back along the ray: direct lighting of a diffuse (or, in the
     // tree integrators, Lambertian) surface, an emitter's colour; 0 for other kinds.
@@ -67,6 +69,7 @@ private:
     // The order in which intersect() tests the objects; a hit replaces the best one only
     // when strictly nearer, so on an exact tie (coincident surfaces) the first one wins.
     std::vector<const Object*> order_;
+    bool absorbing_ = false;
 };
 
 }  // namespace refract

@@ -151,7 +151,7 @@ private:
     Acc band_tree(Walker& w, const Entry& e, const SurfaceHit& h, int band) {
         const std::uint64_t before = stats_.segments;
         Entry eb = e;
-        eb.band = band;
+        eb.band = static_cast<std::int16_t>(band);
         List list;
         SpectralEnds sub(tracer_, ctx_, stats_);
         w.expand(eb, h, ctx_.index[static_cast<size_t>(band)][static_cast<size_t>(h.object->material)], list, sub);
