@@ -28,10 +28,17 @@ struct EyeStokes {
 // At a hit with normal n of the ray `dir` (parent), the child's matrix is
 // C · R(ŝ → x about −dir) · M, where M is the interface's Mueller matrix for light going
 // from the child's ray into the parent's (reflection and transmission are reciprocal).
+// The rotation R(a) = polar::rotator(polar::frame_angle(s, x, k)) is applied to C's
+// columns 1 and 2 directly, with cos 2a and sin 2a from cos a = s·x, sin a = k·(s × x).
 inline EyeStokes descend(const EyeStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M) {
     const Vec3 k = -dir;  // the light's direction on the parent's segment
     const Vec3 s = polar::s_axis(n, k, p.x);
-    return {p.C * polar::rotator(polar::frame_angle(s, p.x, k)) * M, s};
+    const double ca = s.dot(p.x), sa = k.dot(s.cross(p.x));
+    const double c2 = ca * ca - sa * sa, s2 = 2.0 * ca * sa;
+    polar::Mueller CR = p.C;
+    CR.col(1) = c2 * p.C.col(1) - s2 * p.C.col(2);
+    CR.col(2) = s2 * p.C.col(1) + c2 * p.C.col(2);
+    return {CR * M, s};
 }
 
 // Light pass: the photon's Stokes vector (S0 = 1 at the light; the power is in the
@@ -40,9 +47,13 @@ struct LightStokes {
     polar::Stokes S = polar::unpolarised(1.0);
     Vec3 x{1, 0, 0};
 };
+// R(a) = polar::rotator(polar::frame_angle(x, s, dir)) applied to (S1, S2) directly.
 inline LightStokes descend(const LightStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M) {
     const Vec3 s = polar::s_axis(n, dir, p.x);
-    return {M * (polar::rotator(polar::frame_angle(p.x, s, dir)) * p.S), s};
+    const double ca = p.x.dot(s), sa = dir.dot(p.x.cross(s));
+    const double c2 = ca * ca - sa * sa, s2 = 2.0 * ca * sa;
+    const polar::Stokes R(p.S[0], c2 * p.S[1] + s2 * p.S[2], -s2 * p.S[1] + c2 * p.S[2], p.S[3]);
+    return {M * R, s};
 }
 
 // The Stokes vectors of the three colour channels, one per column (S0 row = RGB).
