@@ -36,7 +36,9 @@ EyeStokes camera_stokes(const Scene& scene, const Ray& primary) {
 LinearPolarisation linear_polarisation(const StokesRGB& s, const Scene& scene, const Ray& primary) {
     const polar::Stokes S = s.rowwise().sum();
     const double up = camera_frame(scene, primary).second;
-    return {polar::degree_of_linear_polarisation(S), up * polar::angle_of_linear_polarisation(S)};
+    // Colour-matching weights have negative lobes, so a channel sum can have |S1, S2| > S0
+    // in spectral renders: the degree is clamped to 1.
+    return {std::fmin(1.0, polar::degree_of_linear_polarisation(S)), up * polar::angle_of_linear_polarisation(S)};
 }
 
 }  // namespace refract

@@ -77,7 +77,8 @@ inline Vec3 rgb_of(const StokesRGB& v) { return v.row(0).transpose(); }
 EyeStokes camera_stokes(const Scene& scene, const Ray& primary);
 
 // Degree and angle of linear polarisation of a pixel's Stokes vectors, from the sum of
-// the three channels; the angle on the image, from its right towards its top (radians).
+// the three channels (clamped to 1: spectral channels are sums with weights of both
+// signs); the angle on the image, from its right towards its top (radians).
 struct LinearPolarisation {
     double dolp, aolp;
 };

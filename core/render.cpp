@@ -121,14 +121,14 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
 }
 
 // Exact polarisation: the Stokes vectors of pixel (i, j), the samples averaged, S0
-// finished as the RGB image is.
+// finished as the RGB image is; `lp` from the sum of the channels before that finish (the
+// cie-rgb pipeline clips S0 at 0, not S1–S3).
 StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
-                       Ray& centre) {
+                       LinearPolarisation& lp) {
     const Scene& scene = tracer.scene();
     const RenderSettings& s = scene.settings;
     const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
     StokesRGB sum = StokesRGB::Zero();
-    centre = scene.camera.ray(i + 0.5, j + 0.5);
     for (int k = 0; k < s.samples; ++k) {
         Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
         double x = i + 0.5, y = j + 0.5;
@@ -143,6 +143,7 @@ StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& sta
                         : fresnel_tree_stokes(tracer, ray, start, stats);
     }
     sum /= s.samples;
+    lp = linear_polarisation(sum, scene, scene.camera.ray(i + 0.5, j + 0.5));
     if (spectral) sum.row(0) = spectral->finish(sum.row(0).transpose()).transpose();
     return sum;
 }
@@ -162,9 +163,9 @@ Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
             ctx->maps = maps.get();
         }
     }
-    Ray centre;
+    LinearPolarisation lp{};
     const Vec3 v = scene.settings.polarisation == PolarisationModel::Exact
-                       ? Vec3(pixel_stokes(tracer, i, j, local, ctx ? &*ctx : nullptr, centre).row(0).transpose())
+                       ? Vec3(pixel_stokes(tracer, i, j, local, ctx ? &*ctx : nullptr, lp).row(0).transpose())
                        : pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr);
     if (stats) stats->merge(local);
     return v;
@@ -212,14 +213,13 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 for (int j = ty * kTile; j < std::min(H, (ty + 1) * kTile); ++j)
                     for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i)
                         if (exact) {
-                            Ray centre;
-                            const StokesRGB sv = pixel_stokes(tracer, i, j, st, spectral, centre);
+                            LinearPolarisation lp{};
+                            const StokesRGB sv = pixel_stokes(tracer, i, j, st, spectral, lp);
                             result.image.set(i, j, sv.row(0).transpose());
                             PolarisationImages& p = *result.polarisation;
                             const size_t px = static_cast<size_t>(j) * W + i;
                             for (int r = 0; r < 4; ++r)
                                 for (int c = 0; c < 3; ++c) p.stokes[12 * px + 3 * r + c] = sv(r, c);
-                            const LinearPolarisation lp = linear_polarisation(sv, scene, centre);
                             p.dolp[px] = lp.dolp;
                             p.aolp[px] = lp.aolp;
                         } else {

@@ -20,6 +20,9 @@ const std::vector<Experiment>& all() {
         {"ohtsuka1998",
          "Ohtsuka & Kawai 1998: dispersion in a diamond, light + eye pass, shortcut speed-up, wavelength/element/threshold studies",
          ohtsuka1998::run},
+        {"polarisation",
+         "Exact polarisation against natural light: a sphere's DoP per path vs closed forms, the 1998 diamond and a glass sphere in both models, the diamond through an analyser",
+         polarisation::run},
     };
     return list;
 }

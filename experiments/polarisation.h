@@ -8,7 +8,9 @@
 //     returned, and the difference split by path depth;
 //  3. the diamond through a linear analyser at 0°, 45°, 90°, 135°, and its DoLP image.
 // `compute` measures everything into a Result (numbers and images in memory); `write`
-// turns a Result into CSV, figures, images, scenes and summary.md.
+// turns a Result into CSV, figures, images, scenes and summary.md. Part 1 is in
+// polarisation_sphere.cpp, parts 2 and 3 in polarisation.cpp, the files in
+// polarisation_report.cpp.
 #include <array>
 #include <map>
 #include <string>
@@ -77,6 +79,8 @@ struct SphereStudy {
 // Traces the parallel rays at `angles_deg` through a unit sphere of index n and
 // returns one point per angle and class.
 std::vector<SpherePoint> sphere_points(double n, const std::vector<double>& angles_deg);
+// The whole study: n = 1.5 and 1.333, θi = 0…89° every degree, the errors, the rainbows.
+SphereStudy sphere_study();
 
 // ---- 2. Natural against exact --------------------------------------------------------
 
@@ -119,11 +123,18 @@ struct AnalyserStudy {
     int width = 0, height = 0;
     // max over pixels and channels of |I(0) + I(90) − S0| and |I(45) + I(135) − S0|
     double max_dev_0_90 = 0, max_dev_45_135 = 0;
-    // the same, leaving out channels where the cie-rgb pipeline clipped a negative sum to 0
-    // in one of the five images (a value of exactly 0)
-    double max_dev_0_90_unclipped = 0, max_dev_45_135_unclipped = 0;
-    int clipped_channels = 0;
+    // The cie-rgb pipeline clips a negative channel to 0 at the end, which breaks the sums
+    // where it acts. Channels that are 0 in one of the five images (clipped, or truly
+    // dark) are counted, and the deviations measured without them; deviating channels are
+    // those beyond 1e-9, and whether every one of them is 0 in one of the images.
+    double max_dev_0_90_nonzero = 0, max_dev_45_135_nonzero = 0;
+    int zero_channels = 0, deviating_channels = 0;
+    bool deviations_at_zeros = true;
     double dolp_mean_object = 0, dolp_max_object = 0;  // over the diamond's pixels
+    // Diamond pixels with DoLP > 1, and pixel channels (all pixels) whose Stokes vector lies
+    // outside the cone S1² + S2² + S3² <= S0²: cie-rgb channels are sums over wavelengths
+    // with weights of both signs (r̄'s negative lobe), and S0 is clipped at 0 at the end.
+    int dolp_above_one = 0, channels_outside_cone = 0;
     double seconds = 0;
 };
 

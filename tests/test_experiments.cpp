@@ -17,6 +17,7 @@
 #include "experiments/experiment.h"
 #include "experiments/op_count.h"
 #include "experiments/plot.h"
+#include "experiments/polarisation.h"
 #include "experiments/rtiow.h"
 #include "experiments/yasuda1984.h"
 
@@ -302,5 +303,62 @@ TEST_CASE("Plot helpers: CSV round trip, shortest round-trip numbers, a clear er
         CHECK(fs::file_size(d / "good.pdf") > 0);
         for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find(".tmp-") == std::string::npos);
     }
+    fs::remove_all(d);
+}
+
+TEST_CASE("Polarisation driver (quick): sphere DoP per path equals the closed forms, I(0) + I(90) = S0, "
+          "natural and exact differ on the diamond",
+          "[experiment][polarisation]") {
+    namespace pol = refract::experiments::polarisation;
+    const fs::path d = fs::temp_directory_path() / ("refract-test-" + std::to_string(::getpid()) + "-polarisation");
+    fs::remove_all(d);
+    const pol::Result r = pol::compute({d.string(), 2, true});
+    pol::write(r, d.string());
+    for (const char* f : {"summary.md", "sphere_dop.csv", "sphere_dop_errors.csv", "natural_vs_exact.csv",
+                          "depth_split.csv", "analyser.csv", "times.csv", "diamond-natural.png", "diamond-exact.png",
+                          "diamond-dolp.png", "diamond-exact.stokes.exr", "diamond-exact.dolp.exr",
+                          "diamond-exact.aolp.exr", "diamond-analyser-000.png", "diamond-analyser-135.png",
+                          "sphere-exact.png", "scenes/diamond-exact.json", "scenes/diamond-analyser-045.json"})
+        CHECK(fs::file_size(d / f) > 0);
+    if (gnuplot_available())
+        for (const char* f : {"sphere_dop.png", "depth_split.png", "de2000_diamond.png", "analyser.png",
+                              "dolp_diamond.png"})
+            CHECK(fs::file_size(d / f) > 0);
+    for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find(".tmp-") == std::string::npos);
+
+    // 1. Every class of every sphere, at every angle, against its closed form.
+    REQUIRE(r.sphere.errors.size() == 8);
+    for (const auto& e : r.sphere.errors) {
+        CHECK(e.points == 90);
+        CHECK(e.max_dop_error < 1e-9);
+        CHECK(e.max_signed_error < 1e-9);
+        CHECK(e.max_s23 < 1e-9);
+    }
+    // Brewster's angle: the reflection is fully s-polarised (the grid point 56 degrees is near it).
+    for (const auto& p : r.sphere.points)
+        if (p.n == 1.5 && p.theta_deg == 56 && p.cls == 0) CHECK(p.dop > 0.999);
+    for (const auto& b : r.sphere.rainbows) CHECK_THAT(b.dop, WithinAbs(b.dop_closed, 1e-9));
+
+    // 2. The models differ on the diamond; they agree exactly where a path meets one interface
+    // (depth 0 and 1 of the split).
+    CHECK(r.diamond.rmse > 0);
+    CHECK(r.diamond.de_max > 0);
+    REQUIRE(r.diamond.depth.size() > 2);
+    for (const pol::Comparison* c : {&r.diamond, &r.glass}) {
+        CHECK_THAT(c->depth[0].exact, WithinAbs(c->depth[0].natural, 1e-9 * c->depth[0].natural));
+        CHECK_THAT(c->depth[1].exact, WithinAbs(c->depth[1].natural, 1e-9 * c->depth[1].natural));
+    }
+    // The glass sphere is rendered by the same walk: its depth split sums to the image.
+    double tn = 0, te = 0;
+    for (const auto& row : r.glass.depth) tn += row.natural, te += row.exact;
+    CHECK_THAT(tn, WithinAbs(r.glass.light_natural, 1e-9 * tn));
+    CHECK_THAT(te, WithinAbs(r.glass.light_exact, 1e-9 * te));
+
+    // 3. The analyser: crossed pairs add up to S0 wherever cie-rgb's final clipping does not act.
+    CHECK(r.analyser.max_dev_0_90_nonzero < 1e-9);
+    CHECK(r.analyser.max_dev_45_135_nonzero < 1e-9);
+    CHECK(r.analyser.deviations_at_zeros);
+    CHECK(r.analyser.dolp_max_object > 0);
+    CHECK(read_text(d / "summary.md").find("## 3. The diamond through a linear analyser") != std::string::npos);
     fs::remove_all(d);
 }
