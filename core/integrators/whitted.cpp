@@ -10,7 +10,6 @@ struct StoredNode {
     Vec3 local{0, 0, 0};
     int child[2] = {-1, -1};
     Vec3 factor[2];
-    std::optional<Vec3> absorbed;  // Beer–Lambert over the ray that reached this node
 };
 
 }  // namespace
@@ -32,16 +31,19 @@ Vec3 whitted_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats
             tree[k].local = tracer.background(p.ray.dir);
             continue;
         }
-        tree[k].absorbed = tracer.absorption(*hit, 0.0);
+        // Beer–Lambert over the ray that reached this node scales all its light: its
+        // local light and its children's factors.
+        const std::optional<Vec3> absorbed = tracer.absorption(*hit, 0.0);
         const Interaction n = tracer.interact(*hit, p.ray, stats);
         if (n.leaf) tree[k].local = tracer.local_light(*hit, stats);
+        if (absorbed) tree[k].local = tree[k].local.cwiseProduct(*absorbed);
         for (int b = 0; b < n.branches; ++b) {
             if (p.depth + 1 > max_depth) {
                 ++stats.depth_limited;
                 continue;
             }
             tree[k].child[b] = static_cast<int>(tree.size());
-            tree[k].factor[b] = n.branch[b].factor;
+            tree[k].factor[b] = absorbed ? Vec3(n.branch[b].factor.cwiseProduct(*absorbed)) : n.branch[b].factor;
             tree.emplace_back();
             rays.push_back({n.branch[b].ray, p.depth + 1});
         }
@@ -53,7 +55,7 @@ Vec3 whitted_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats
         Vec3 v = tree[k].local;
         for (int b = 0; b < 2; ++b)
             if (tree[k].child[b] >= 0) v += tree[k].factor[b].cwiseProduct(I[tree[k].child[b]]);
-        I[k] = tree[k].absorbed ? Vec3(tree[k].absorbed->cwiseProduct(v)) : v;
+        I[k] = v;
     }
     return I[0];
 }
