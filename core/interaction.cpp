@@ -116,18 +116,12 @@ Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& r
     return mirror(m.color, h, ray, c.exact);
 }
 
-Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
-    // POV-Ray stores an interior's ior in single precision (frame.h, class Interior):
-    // n = 1.333 refracts as 1.33299994..., which moves far-away hits by ~0.1 unit.
-    const double nominal = c.pov ? static_cast<double>(static_cast<float>(m.ior)) : m.ior;
-    const double ior = c.band_ior > 0 ? c.band_ior : nominal;
-    const double eta = h.entering ? ior : 1.0 / ior;
-    if (c.pov) {
-        const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
-        const auto refr = optics::refract(ray.dir, h.normal, eta);
-        return dielectric_pov(m, h, ray, cos_i, h.entering ? nominal : 1.0 / nominal, refr, c.band_ior > 0, c.split,
-                              c.adc);
-    }
+namespace {
+
+// The physical mode's dielectric node (Yasuda 1984 §3.1.3 ③④), with Mueller matrices on
+// the branches for exact polarisation.
+Interaction dielectric_physical(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray,
+                                const InteractionContext& c, double eta) {
     const DielectricNode<Vec3> d = dielectric_node(ray.dir, h.normal, eta, m.reflectance, m.constant_reflectivity,
                                                    m.filter);
     Interaction n;
@@ -151,6 +145,20 @@ Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const R
         n.branches = 2;
     }
     return n;
+}
+
+}  // namespace
+
+Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    // POV-Ray stores an interior's ior in single precision (frame.h, class Interior):
+    // n = 1.333 refracts as 1.33299994..., which moves far-away hits by ~0.1 unit.
+    const double nominal = c.pov ? static_cast<double>(static_cast<float>(m.ior)) : m.ior;
+    const double ior = c.band_ior > 0 ? c.band_ior : nominal;
+    const double eta = h.entering ? ior : 1.0 / ior;
+    if (!c.pov) return dielectric_physical(m, h, ray, c, eta);
+    const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
+    const auto refr = optics::refract(ray.dir, h.normal, eta);
+    return dielectric_pov(m, h, ray, cos_i, h.entering ? nominal : 1.0 / nominal, refr, c.band_ior > 0, c.split, c.adc);
 }
 
 Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {

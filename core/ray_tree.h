@@ -109,7 +109,12 @@ public:
     // True when it was added.
     bool push(const Entry& e, const SurfaceHit& h, const Interaction& in, int b, bool transmitted, List& list,
               const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
-        const Branch& br = in.branch[static_cast<size_t>(b)];
+        return push(e, h, in.branch[static_cast<size_t>(b)], in.mueller[static_cast<size_t>(b)], transmitted, list, tint,
+                    band);
+    }
+    // The same for a branch `br` with Mueller matrix M (read only with exact polarisation).
+    bool push(const Entry& e, const SurfaceHit& h, const Branch& br, const polar::Mueller& M, bool transmitted,
+              List& list, const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
         const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
         if (a.bailout <= 0 || a.bailout < limits_.threshold) {
             ++stats_.pruned;
@@ -123,7 +128,7 @@ public:
         list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
                         static_cast<std::int16_t>(refl), static_cast<std::int16_t>(trans),
                         static_cast<std::int16_t>(band == -2 ? e.band : band), e.travelled + h.hit.t,
-                        descend(e.pol, h.normal, e.ray.dir, in.mueller[static_cast<size_t>(b)])});
+                        descend(e.pol, h.normal, e.ray.dir, M)});
         return true;
     }
 

@@ -48,6 +48,12 @@ StokesRGB centre_stokes(const Scene& s) {
     return fresnel_tree_stokes(tracer, ray, camera_stokes(s, ray), st);
 }
 
+RenderOptions threads(int n) {
+    RenderOptions o;
+    o.threads = n;
+    return o;
+}
+
 }  // namespace
 
 TEST_CASE("Beer-Lambert slab: transmittance with all internal reflections, per polarisation, against the closed form",
@@ -146,9 +152,9 @@ TEST_CASE("Beer-Lambert: the stored Whitted tree and the FIFO walk agree on an a
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.6}, {"absorption", "emerald"}}}}},
               {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
               {"render", {{"max_depth", 7}, {"threshold", 0}}}};
-    const Image tree = render(parse_scene(j, "fifo.json"), {1}).image;
+    const Image tree = render(parse_scene(j, "fifo.json"), threads(1)).image;
     j["render"]["integrator"] = "whitted";
-    const Image stored = render(parse_scene(j, "whitted.json"), {1}).image;
+    const Image stored = render(parse_scene(j, "whitted.json"), threads(1)).image;
     double max_err = 0, max_v = 0;
     for (size_t k = 0; k < tree.rgb.size(); ++k) {
         max_err = std::fmax(max_err, std::abs(tree.rgb[k] - stored.rgb[k]));

@@ -36,6 +36,12 @@ StokesRGB centre_stokes(const Scene& s) {
     return fresnel_tree_stokes(tracer, ray, camera_stokes(s, ray), st);
 }
 
+RenderOptions threads(int n) {
+    RenderOptions o;
+    o.threads = n;
+    return o;
+}
+
 }  // namespace
 
 TEST_CASE("Brewster's law: natural light reflected at tan(theta) = n is fully s-polarised", "[polarisation]") {
@@ -79,9 +85,9 @@ TEST_CASE("Exact polarisation equals natural light where light meets a single in
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.7}, {"filter", {0, 0, 0}}}}}},
               {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
               {"render", {{"max_depth", 6}, {"threshold", 0}}}};
-    const RenderResult natural = render(parse_scene(j, "n.json"), {1});
+    const RenderResult natural = render(parse_scene(j, "n.json"), threads(1));
     j["render"]["polarisation"] = "exact";
-    const RenderResult exact = render(parse_scene(j, "e.json"), {1});
+    const RenderResult exact = render(parse_scene(j, "e.json"), threads(1));
     REQUIRE(exact.polarisation);
     double max_err = 0, max_dolp = 0;
     for (size_t k = 0; k < natural.image.rgb.size(); ++k)
@@ -99,9 +105,9 @@ TEST_CASE("Exact polarisation: a multi-bounce glass sphere differs from per-node
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.7}}}}},
               {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
               {"render", {{"max_depth", 8}, {"threshold", 0}}}};
-    const RenderResult natural = render(parse_scene(j, "n.json"), {1});
+    const RenderResult natural = render(parse_scene(j, "n.json"), threads(1));
     j["render"]["polarisation"] = "exact";
-    const RenderResult exact = render(parse_scene(j, "e.json"), {1});
+    const RenderResult exact = render(parse_scene(j, "e.json"), threads(1));
     double max_err = 0;
     for (size_t k = 0; k < natural.image.rgb.size(); ++k)
         max_err = std::fmax(max_err, std::abs(natural.image.rgb[k] - exact.image.rgb[k]));
@@ -122,9 +128,9 @@ TEST_CASE("Exact polarisation in the light pass: the caustic of natural light is
                               {"light_pass", {{"photons", 20000}, {"element_size", 0.1}}}}}};
         return parse_scene(j, "caustic.json");
     };
-    const Image u = render(scene({{"type", "unpolarised"}}), {2}).image;
-    const Image a = render(scene({{"type", "linear"}, {"angle", 0}}), {2}).image;
-    const Image b = render(scene({{"type", "linear"}, {"angle", 90}}), {2}).image;
+    const Image u = render(scene({{"type", "unpolarised"}}), threads(2)).image;
+    const Image a = render(scene({{"type", "linear"}, {"angle", 0}}), threads(2)).image;
+    const Image b = render(scene({{"type", "linear"}, {"angle", 90}}), threads(2)).image;
     double max_err = 0, max_diff = 0;
     for (size_t k = 0; k < u.rgb.size(); ++k) {
         max_err = std::fmax(max_err, std::abs(u.rgb[k] - 0.5 * (a.rgb[k] + b.rgb[k])));

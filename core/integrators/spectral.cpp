@@ -176,12 +176,12 @@ private:
             // A band's TIR mirror ray is a full ray (it splits again), the same for every
             // band that meets TIR: traced once with the sum of their weights.
             Vec3 mirror_weight(0, 0, 0);
-            std::optional<Interaction> mirror;
+            std::optional<Branch> mirror;  // POV-Ray mode: natural light, no Mueller matrix
             for (const int k : bands) {
                 const size_t kb = static_cast<size_t>(k);
                 const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
                 if (bn.split_mirror) {
-                    mirror = bn;
+                    mirror = bn.branch[1];
                     mirror_weight += ctx_.weights[kb];
                     continue;
                 }
@@ -193,7 +193,7 @@ private:
             }
             if (mirror) {
                 List list;
-                w.push(e, h, *mirror, 1, false, list);
+                w.push(e, h, *mirror, polar::Mueller::Identity(), false, list);
                 sum += tinted(mirror_weight, subwalk(w, list));
             }
             return sum;
