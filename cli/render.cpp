@@ -1,4 +1,5 @@
 // refract render SCENE.json -o IMAGE [--threads N] [--stats]
+#include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
@@ -13,6 +14,7 @@ struct RenderArgs {
     int threads = 0;
     bool stats = false;
     bool linear16 = false;
+    bool lost = false;
 };
 
 refract::cli::Registrar reg{10, [](CLI::App& app) {
@@ -23,6 +25,9 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it");
     sub->add_flag("--stats", args->stats, "Print ray, tree and list counters");
     sub->add_flag("--linear16", args->linear16, "PNG output as 16-bit linear instead of 8-bit sRGB");
+    sub->add_flag("--lost-energy", args->lost,
+                  "Also write IMAGE.lost.exr: per pixel the weight dropped by the depth limit, the "
+                  "reflection/transmission limits and the threshold");
     sub->callback([args] {
         const refract::Scene scene = refract::load_scene(args->scene);
         refract::RenderOptions opt;
@@ -32,6 +37,13 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         refract::write_image(args->output, result.image, {args->linear16});
         if (result.polarisation)
             refract::write_polarisation(args->output, result.image.width, result.image.height, *result.polarisation);
+        if (args->lost) {
+            const std::filesystem::path p(args->output);
+            refract::write_channels((p.parent_path() / p.stem()).string() + ".lost.exr", result.image.width,
+                                    result.image.height, {"depth", "limits", "threshold"}, result.lost);
+        }
+        const std::string warning = result.stats.lost_warning();
+        if (!warning.empty()) std::cerr << "refract render: " << args->scene << ": " << warning << "\n";
         if (args->stats) std::cout << result.stats.summary();
     });
 }};

@@ -17,6 +17,7 @@ struct Scene;
 // Natural light (Yasuda eq. 7 at every node): nothing to carry.
 struct NaturalLight {};
 inline NaturalLight descend(const NaturalLight&, const Vec3&, const Vec3&, const polar::Mueller&) { return {}; }
+inline double throughput(const NaturalLight&) { return 1.0; }
 
 // Eye pass: `C` maps the Stokes vector of light arriving at this ray's origin from its
 // direction (propagating along −dir, in frame x) to what the camera records (its frame,
@@ -41,6 +42,9 @@ inline EyeStokes descend(const EyeStokes& p, const Vec3& n, const Vec3& dir, con
     return {CR * M, s};
 }
 
+// The share of unpolarised light arriving along the branch that reaches the camera.
+inline double throughput(const EyeStokes& p) { return p.C(0, 0); }
+
 // Light pass: the photon's Stokes vector (S0 = 1 at the light; the power is in the
 // entry's weight) in frame x, propagating along the ray.
 struct LightStokes {
@@ -55,6 +59,8 @@ inline LightStokes descend(const LightStokes& p, const Vec3& n, const Vec3& dir,
     const polar::Stokes R(p.S[0], c2 * p.S[1] + s2 * p.S[2], -s2 * p.S[1] + c2 * p.S[2], p.S[3]);
     return {M * R, s};
 }
+
+inline double throughput(const LightStokes& p) { return p.S[0]; }
 
 // The Stokes vectors of the three colour channels, one per column (S0 row = RGB).
 using StokesRGB = Eigen::Matrix<double, 4, 3>;

@@ -20,6 +20,7 @@
 // vector for a light pass; the walker updates it with each branch's Mueller matrix.
 #include <cstdint>
 #include <deque>
+#include <vector>
 
 #include "core/polarisation_state.h"
 #include "core/tracer.h"
@@ -46,6 +47,10 @@ struct TreeLimits {
     double threshold = 0;  // RenderSettings::pruning_threshold()
     int max_depth = 16;
     int max_reflections = kUnlimited, max_transmissions = kUnlimited;
+    // The spectral eye pass weighs a band's light by its RGB weight after the band's walk:
+    // the weight a band's dropped branch would have carried is scaled by it. Bands past
+    // the end (the shortcut's three test wavelengths) are not counted.
+    const std::vector<Vec3>* band_weights = nullptr;
 };
 
 // The limits a scene's render settings set (no reflection/transmission limits).
@@ -118,11 +123,18 @@ public:
         const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
         if (a.bailout <= 0 || a.bailout < limits_.threshold) {
             ++stats_.pruned;
+            stats_.lost_threshold += dropped(e, h, a.weight.cwiseProduct(tint), M, band);
             return false;
         }
         const int refl = e.reflections + (transmitted ? 0 : 1), trans = e.transmissions + (transmitted ? 1 : 0);
-        if (e.depth + 1 > limits_.max_depth || refl > limits_.max_reflections || trans > limits_.max_transmissions) {
+        if (e.depth + 1 > limits_.max_depth) {
             ++stats_.depth_limited;
+            stats_.lost_depth += dropped(e, h, a.weight.cwiseProduct(tint), M, band);
+            return false;
+        }
+        if (refl > limits_.max_reflections || trans > limits_.max_transmissions) {
+            ++stats_.depth_limited;
+            stats_.lost_limits += dropped(e, h, a.weight.cwiseProduct(tint), M, band);
             return false;
         }
         list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
@@ -133,6 +145,19 @@ public:
     }
 
 private:
+    // The light a dropped child would have carried for unpolarised light: its colour
+    // weight's mean, times the Fresnel part its polarisation payload holds.
+    double dropped(const Entry& e, const SurfaceHit& h, const Vec3& weight, const polar::Mueller& M, int band) const {
+        const int k = band == -2 ? e.band : band;
+        Vec3 w = weight;
+        if (k >= 0 && limits_.band_weights) {
+            const auto& bw = *limits_.band_weights;
+            if (static_cast<size_t>(k) >= bw.size()) return 0.0;
+            w = w.cwiseProduct(bw[static_cast<size_t>(k)]);
+        }
+        return w.mean() * throughput(descend(e.pol, h.normal, e.ray.dir, M));
+    }
+
     const SceneTracer& tracer_;
     TreeLimits limits_;
     RenderStats& stats_;

@@ -32,6 +32,9 @@ void RenderStats::merge(const RenderStats& o) {
     tree_nodes += o.tree_nodes;
     pruned += o.pruned;
     depth_limited += o.depth_limited;
+    lost_depth += o.lost_depth;
+    lost_limits += o.lost_limits;
+    lost_threshold += o.lost_threshold;
     peak_list = std::max(peak_list, o.peak_list);
     spectral_splits += o.spectral_splits;
     shortcut_tests += o.shortcut_tests;
@@ -51,6 +54,8 @@ std::string RenderStats::summary() const {
       << "tree nodes        " << tree_nodes << "\n"
       << "pruned branches   " << pruned << "\n"
       << "depth-limited     " << depth_limited << "\n"
+      << "lost weight       depth " << lost_depth << ", limits " << lost_limits << ", threshold " << lost_threshold
+      << " (of " << primary_rays << " primary rays)\n"
       << "peak list / tree  " << peak_list << "\n"
       << "wall time (s)     " << seconds << "\n";
     if (spectral_splits > 0 || shortcut_tests > 0)
@@ -65,6 +70,25 @@ std::string RenderStats::summary() const {
           << "light pass (s)    " << light_seconds << "\n";
     if (seconds > 0) s << "segments/s        " << static_cast<double>(segments) / seconds << "\n";
     return s.str();
+}
+
+std::string RenderStats::lost_warning(double fraction) const {
+    const double total = lost_depth + lost_limits + lost_threshold;
+    if (primary_rays == 0 || !(total > fraction * static_cast<double>(primary_rays))) return "";
+    const double n = static_cast<double>(primary_rays);
+    auto pct = [&](double v) {
+        std::ostringstream s;
+        s.precision(3);
+        s << 100.0 * v / n << " %";
+        return s.str();
+    };
+    std::string why;
+    if (lost_depth >= lost_limits && lost_depth >= lost_threshold) why = "raise render.max_depth";
+    else if (lost_threshold >= lost_limits) why = "lower render.threshold";
+    else why = "raise render.spectral.max_reflections / max_transmissions";
+    return "warning: " + pct(total) + " of the image's light was dropped (depth limit " + pct(lost_depth) +
+           ", reflection/transmission limits " + pct(lost_limits) + ", threshold " + pct(lost_threshold) + "): " +
+           why;
 }
 
 namespace {
@@ -194,7 +218,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     }
     const SpectralContext* spectral = ctx ? &*ctx : nullptr;
     const int W = scene.camera.width, H = scene.camera.height;
-    RenderResult result{Image(W, H), {}, std::nullopt};
+    RenderResult result{Image(W, H), {}, std::vector<double>(3 * static_cast<size_t>(W) * H), std::nullopt};
     const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
     if (exact) {
         const size_t n = static_cast<size_t>(W) * H;
@@ -209,9 +233,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     auto body = [&](const tbb::blocked_range2d<int>& r) {
         for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty)
             for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
-                RenderStats& st = tile_stats[static_cast<size_t>(ty) * tiles_x + tx];
+                RenderStats& tile = tile_stats[static_cast<size_t>(ty) * tiles_x + tx];
                 for (int j = ty * kTile; j < std::min(H, (ty + 1) * kTile); ++j)
-                    for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i)
+                    for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i) {
+                        RenderStats st;  // this pixel's, for its lost weight
                         if (exact) {
                             LinearPolarisation lp{};
                             const StokesRGB sv = pixel_stokes(tracer, i, j, st, spectral, lp);
@@ -225,6 +250,12 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                         } else {
                             result.image.set(i, j, pixel_value(tracer, i, j, st, spectral));
                         }
+                        const size_t px = 3 * (static_cast<size_t>(j) * W + i);
+                        result.lost[px] = st.lost_depth / scene.settings.samples;
+                        result.lost[px + 1] = st.lost_limits / scene.settings.samples;
+                        result.lost[px + 2] = st.lost_threshold / scene.settings.samples;
+                        tile.merge(st);
+                    }
                 const int d = ++done;
                 if (opt.progress) {
                     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -19,6 +19,13 @@ struct RenderStats {
     std::uint64_t tree_nodes = 0;      // branching nodes (surface interactions that split)
     std::uint64_t pruned = 0;          // branches dropped under the threshold
     std::uint64_t depth_limited = 0;   // branches dropped at the depth limit
+    // The light the dropped branches would have carried: their weights (cumulative
+    // attenuation, mean of the channels; a primary ray has weight 1), summed, by what
+    // dropped them. Eye passes only (the Fresnel tree, the spectral pass, the stochastic
+    // integrator's last bounce); Whitted's stored tree has no weights while it grows.
+    double lost_depth = 0;       // max_depth
+    double lost_limits = 0;      // the spectral pass's max_reflections / max_transmissions
+    double lost_threshold = 0;   // the pruning threshold
     std::uint64_t peak_list = 0;       // fresnel-tree: longest FIFO list; whitted: largest stored tree
     // Spectral eye pass (core/integrators/spectral.h).
     std::uint64_t spectral_splits = 0;      // rays split per wavelength (first transparent hit)
@@ -34,6 +41,9 @@ struct RenderStats {
 
     void merge(const RenderStats& o);
     std::string summary() const;       // multi-line text for --stats
+    // One line when the dropped weight exceeds `fraction` of the primary rays' (naming the
+    // setting that dropped most), else empty.
+    std::string lost_warning(double fraction = 0.01) const;
 };
 
 struct IlluminationMaps;
@@ -58,6 +68,9 @@ struct PolarisationImages {
 struct RenderResult {
     Image image;
     RenderStats stats;
+    // Per pixel the weight dropped by the depth limit, the reflection/transmission limits
+    // and the threshold (RenderStats::lost_*), per primary sample: 3 values per pixel.
+    std::vector<double> lost;
     std::optional<PolarisationImages> polarisation;
 };
 

@@ -222,7 +222,9 @@ private:
 template <class P>
 auto walk_spectral(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary, const P& start,
                    RenderStats& stats) {
-    RayTreeWalkerT<P> walker(tracer, ctx.limits(tracer.settings()), stats);
+    TreeLimits limits = ctx.limits(tracer.settings());
+    limits.band_weights = &ctx.weights;
+    RayTreeWalkerT<P> walker(tracer, limits, stats);
     SpectralEnds<P> ends(tracer, ctx, stats);
     typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{primary, Vec3(1, 1, 1)}};
     list.front().pol = start;
