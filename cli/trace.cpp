@@ -1,0 +1,79 @@
+// refract trace SCENE.json (--pixel X Y | --ray OX OY OZ DX DY DZ) [--wavelength NM] [-o FILE]
+// Every segment of one ray's tree as JSON (core/trace_record.h).
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "core/scene_json.h"
+#include "core/trace_record.h"
+#include "geometry/error.h"
+#include "validation/files.h"
+
+namespace {
+
+struct TraceArgs {
+    std::string scene, output;
+    std::vector<int> pixel;
+    std::vector<double> ray;
+    double wavelength = 0;
+};
+
+nlohmann::json vec(const refract::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+// The record as JSON: the writing step, separate from the tracing.
+nlohmann::json to_json(const refract::TraceRecord& r, const std::string& scene) {
+    using nlohmann::json;
+    json segs = json::array();
+    for (const auto& s : r.segments) {
+        json j = {{"id", s.id}, {"parent", s.parent}, {"depth", s.depth}, {"reflections", s.reflections},
+                  {"transmissions", s.transmissions}, {"origin", vec(s.ray.origin)}, {"direction", vec(s.ray.dir)},
+                  {"weight", vec(s.weight)}, {"event", s.event}, {"light", vec(s.light)}};
+        if (s.hit) {
+            j["length"] = s.length;
+            j["point"] = vec(s.point);
+            j["object"] = s.object;
+            j["facet"] = s.facet;
+            if (!s.facet_label.empty()) j["facet_label"] = s.facet_label;
+            j["entering"] = s.entering;
+            if (s.eta > 0) {
+                j["eta"] = s.eta;
+                j["cos_i"] = s.cos_i;
+                j["cos_t"] = s.cos_t;
+                j["Rs"] = s.Rs;
+                j["Rp"] = s.Rp;
+            }
+            if (s.event != "diffuse" && s.event != "emissive") j["R"] = s.R;
+        }
+        segs.push_back(j);
+    }
+    json out = {{"scene", scene}, {"segments", segs}, {"radiance", vec(r.radiance)}};
+    out["wavelength_nm"] = r.wavelength_nm > 0 ? json(r.wavelength_nm) : json(nullptr);
+    return out;
+}
+
+refract::cli::Registrar reg{15, [](CLI::App& app) {
+    auto a = std::make_shared<TraceArgs>();
+    auto* sub = app.add_subcommand("trace", "Record every segment of one ray's tree (a pixel's or a given ray) as JSON");
+    sub->add_option("scene", a->scene, "Scene file (JSON)")->required();
+    auto* px = sub->add_option("--pixel", a->pixel, "Pixel X Y (its centre)")->expected(2);
+    auto* ry = sub->add_option("--ray", a->ray, "Ray origin and direction: OX OY OZ DX DY DZ")->expected(6);
+    px->excludes(ry);
+    sub->add_option("--wavelength", a->wavelength, "Trace at one wavelength in nm (dispersive materials take their index there)");
+    sub->add_option("-o,--output", a->output, "Write the JSON here instead of standard output");
+    sub->callback([a] {
+        using namespace refract;
+        if (a->pixel.empty() && a->ray.empty()) throw InputError("trace: give --pixel X Y or --ray OX OY OZ DX DY DZ");
+        const Scene scene = load_scene(a->scene);
+        const TraceRecord r = a->pixel.empty()
+                                  ? trace_ray(scene, Ray{Vec3(a->ray[0], a->ray[1], a->ray[2]), Vec3(a->ray[3], a->ray[4], a->ray[5])},
+                                              a->wavelength)
+                                  : trace_pixel(scene, a->pixel[0], a->pixel[1], a->wavelength);
+        const std::string text = to_json(r, a->scene).dump(1) + "\n";
+        if (a->output.empty()) std::cout << text;
+        else validation::write_text_file(a->output, text);
+    });
+}};
+
+}  // namespace

@@ -1,0 +1,141 @@
+#include "core/trace_record.h"
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <tuple>
+
+#include "core/optics.h"
+#include "core/ray_tree.h"
+#include "core/spectrum/wavelengths.h"
+#include "geometry/error.h"
+
+namespace refract {
+
+namespace {
+
+// Records every entry the walker pops; parents are found by the exact start point (a
+// child starts at its parent's hit point, and the FIFO list records parents first).
+class RecordingEnds {
+public:
+    RecordingEnds(const SceneTracer& t, double nm, TraceRecord& r, RenderStats& st)
+        : tracer_(t), nm_(nm), rec_(r), stats_(st) {}
+
+    void background(const TreeEntry& e) {
+        TraceSegment& s = start(e);
+        s.event = "background";
+        s.light = e.weight.cwiseProduct(tracer_.background(e.ray.dir));
+        rec_.radiance += s.light;
+    }
+
+    void leaf(const TreeEntry& e, const SurfaceHit& h) {
+        TraceSegment& s = rec_.segments[static_cast<size_t>(current_)];
+        s.event = h.material->is<material::Emissive>() ? "emissive" : "diffuse";
+        s.light = e.weight.cwiseProduct(tracer_.local_light(h, stats_));
+        rec_.radiance += s.light;
+    }
+
+    bool intercept(RayTreeWalker&, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List&) {
+        TraceSegment& s = start(e);
+        current_ = s.id;
+        s.hit = true;
+        s.length = h.hit.t;
+        s.point = h.hit.point;
+        s.object = h.object->name;
+        s.facet = h.hit.facet;
+        if (const auto* c = std::get_if<ConvexPolyhedron>(&h.object->shape))
+            if (h.hit.facet >= 0 && static_cast<size_t>(h.hit.facet) < c->labels.size())
+                s.facet_label = c->labels[static_cast<size_t>(h.hit.facet)];
+        s.entering = h.entering;
+        hits_[key(h.hit.point)] = s.id;
+        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h));
+        if (in.leaf) return false;  // leaf() names the event
+        if (const auto* d = h.material->dielectric()) {
+            const double ior = band_ior(e, h) > 0 ? band_ior(e, h) : d->ior;
+            s.eta = h.entering ? ior : 1.0 / ior;
+            s.cos_i = std::fmin(-e.ray.dir.dot(h.normal), 1.0);
+            s.R = in.reflectance;
+            if (const auto f = optics::fresnel(s.cos_i, s.eta)) {
+                s.Rs = f->Rs;
+                s.Rp = f->Rp;
+                s.cos_t = f->cos_t;
+                s.event = in.branches == 2 ? "reflection and refraction" : "reflection only";
+            } else {
+                s.Rs = s.Rp = 1.0;
+                s.event = "total internal reflection";
+            }
+        } else {
+            s.event = "mirror";
+            s.R = in.reflectance;
+        }
+        return false;  // the walker expands the node as it always does
+    }
+
+    double band_ior(const TreeEntry&, const SurfaceHit& h) const {
+        const auto* d = h.material->dielectric();
+        if (nm_ <= 0 || !d || !d->dispersion) return 0.0;
+        return d->dispersion->n(nm_);
+    }
+    double wavelength(const TreeEntry&) const { return nm_; }
+
+private:
+    using Key = std::tuple<double, double, double>;
+    static Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+    TraceSegment& start(const TreeEntry& e) {
+        TraceSegment s;
+        s.id = static_cast<int>(rec_.segments.size());
+        const auto it = hits_.find(key(e.ray.origin));
+        s.parent = rec_.segments.empty() || it == hits_.end() ? -1 : it->second;
+        s.depth = e.depth;
+        s.reflections = e.reflections;
+        s.transmissions = e.transmissions;
+        s.ray = e.ray;
+        s.weight = e.weight;
+        rec_.segments.push_back(s);
+        return rec_.segments.back();
+    }
+
+    const SceneTracer& tracer_;
+    double nm_;
+    TraceRecord& rec_;
+    RenderStats& stats_;
+    std::map<Key, int> hits_;
+    int current_ = -1;
+};
+
+}  // namespace
+
+TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm) {
+    const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
+    if (wavelength_nm != 0 && !(wavelength_nm >= spectrum::kMinWavelength && wavelength_nm <= spectrum::kMaxWavelength))
+        throw InputError(f + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
+                         std::to_string(static_cast<int>(spectrum::kMinWavelength)) + ", " +
+                         std::to_string(static_cast<int>(spectrum::kMaxWavelength)) + "] nm");
+    if (!ray.origin.allFinite() || !ray.dir.allFinite() || !(ray.dir.norm() > 0))
+        throw InputError(f + ": the ray needs a finite origin and a finite, non-zero direction");
+    TraceRecord rec;
+    rec.wavelength_nm = wavelength_nm;
+    SceneTracer tracer(scene);
+    RenderStats stats;
+    TreeLimits limits = tree_limits(scene.settings);
+    limits.max_reflections = scene.settings.spectral.max_reflections.value_or(TreeLimits::kUnlimited);
+    limits.max_transmissions = scene.settings.spectral.max_transmissions.value_or(TreeLimits::kUnlimited);
+    RayTreeWalker walker(tracer, limits, stats);
+    RecordingEnds ends(tracer, wavelength_nm, rec, stats);
+    // A unit direction is kept as it is (a camera ray traces as it renders).
+    const Vec3 dir = std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : Vec3(ray.dir.normalized());
+    RayTreeWalker::List list{TreeEntry{Ray{ray.origin, dir}, Vec3(1, 1, 1)}};
+    walker.walk(list, ends);
+    return rec;
+}
+
+TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm) {
+    const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
+    if (i < 0 || j < 0 || i >= scene.camera.width || j >= scene.camera.height)
+        throw InputError(f + ": --pixel " + std::to_string(i) + " " + std::to_string(j) + " is outside the " +
+                         std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + " image");
+    return trace_ray(scene, scene.camera.ray(i + 0.5, j + 0.5), wavelength_nm);
+}
+
+}  // namespace refract

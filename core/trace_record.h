@@ -1,0 +1,49 @@
+#pragma once
+// Path record: every segment of one ray's tree, walked by the one ray-tree walker with
+// the scene's threshold and limits (natural light), with what happened at its end: the
+// point, object and facet, the event, the cosines, Rs and Rp, the weight, the wavelength.
+// `refract trace` writes it as JSON (docs/scene-format.md, "Tracing one ray").
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace refract {
+
+struct TraceSegment {
+    int id = 0;
+    int parent = -1;     // the segment whose end this one starts from; −1: the primary ray
+    int depth = 0, reflections = 0, transmissions = 0;
+    Ray ray;
+    Vec3 weight{1, 1, 1};  // cumulative attenuation along the segment (after its absorption)
+    // What ends it: "background", or at a hit "diffuse", "emissive", "mirror",
+    // "reflection and refraction", "reflection only" (the refracted branch too weak or
+    // absent), "total internal reflection".
+    std::string event;
+    bool hit = false;
+    double length = 0;  // to the hit
+    Vec3 point{0, 0, 0};
+    std::string object;
+    int facet = -1;            // facet or triangle index, −1 for smooth shapes
+    std::string facet_label;   // the polyhedron's facet name, when it has one
+    bool entering = false;
+    // Dielectric hits: cos θi, cos θt (0 on total internal reflection), Rs, Rp and the R
+    // the node used; the relative index η = n_t / n_i.
+    double cos_i = 0, cos_t = 0, Rs = 0, Rp = 0, R = 0, eta = 0;
+    Vec3 light{0, 0, 0};  // what this segment brings to the root: weight × the light at its end (leaves)
+};
+
+struct TraceRecord {
+    double wavelength_nm = 0;  // 0: an RGB ray with each material's nominal index
+    std::vector<TraceSegment> segments;
+    Vec3 radiance{0, 0, 0};    // the sum of the segments' light: the ray's value
+};
+
+// The tree of `ray` (at `wavelength_nm` when > 0: every dielectric with a dispersion
+// takes its index there). Throws InputError for an invalid scene or wavelength.
+TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm = 0);
+
+// The same for the centre of pixel (i, j).
+TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm = 0);
+
+}  // namespace refract
