@@ -1,4 +1,5 @@
 #include "validation/compare.h"
+#include "validation/measure.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,12 +103,17 @@ ProfileComparison compare_profile(const Image& img, const std::vector<std::pair<
     if (channel < 0 || channel > 2) throw InputError("profile channel must be 0, 1 or 2 (got " + std::to_string(channel) + ")");
     ProfileComparison p;
     double sq = 0;
-    for (const auto& [x, y] : pixels) {
-        if (x < 0 || y < 0 || x >= img.width || y >= img.height)
-            throw InputError("profile pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the image");
+    std::vector<Vec3> values;
+    try {
+        values = values_at(img, pixels);  // validation/measure.h
+    } catch (const InputError& e) {
+        throw InputError(std::string("profile ") + e.what());
+    }
+    for (size_t k = 0; k < pixels.size(); ++k) {
+        const auto [x, y] = pixels[k];
         const auto e = expected(x, y);
         if (!e) continue;
-        const double v = img.at(x, y)[channel];
+        const double v = values[k][channel];
         p.points.push_back({x, y, v, *e});
         const double err = std::abs(v - *e);
         p.max_error = std::max(p.max_error, err);

@@ -1,0 +1,69 @@
+#include "validation/measure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "geometry/error.h"
+
+namespace refract::validation {
+
+RegionStats region_stats(const Image& img, const PixelRect& rect, const Image* mask) {
+    if (mask && (mask->width != img.width || mask->height != img.height))
+        throw InputError("mask is " + std::to_string(mask->width) + "x" + std::to_string(mask->height) +
+                         ", the image " + std::to_string(img.width) + "x" + std::to_string(img.height));
+    RegionStats s;
+    for (auto& c : s.channel) {
+        c.min = std::numeric_limits<double>::infinity();
+        c.max = -std::numeric_limits<double>::infinity();
+    }
+    const int x0 = std::max(0, std::min(rect.x0, rect.x1)), x1 = std::min(img.width - 1, std::max(rect.x0, rect.x1));
+    const int y0 = std::max(0, std::min(rect.y0, rect.y1)), y1 = std::min(img.height - 1, std::max(rect.y0, rect.y1));
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            if (mask && !(mask->at(x, y).x() > 0.5)) continue;
+            const Vec3 v = img.at(x, y);
+            ++s.pixels;
+            for (int c = 0; c < 3; ++c) {
+                s.channel[static_cast<size_t>(c)].sum += v[c];
+                s.channel[static_cast<size_t>(c)].min = std::min(s.channel[static_cast<size_t>(c)].min, v[c]);
+                s.channel[static_cast<size_t>(c)].max = std::max(s.channel[static_cast<size_t>(c)].max, v[c]);
+            }
+        }
+    if (s.pixels == 0) throw InputError("the region selects no pixel");
+    for (auto& c : s.channel) c.mean = c.sum / static_cast<double>(s.pixels);
+    return s;
+}
+
+std::vector<Vec3> values_at(const Image& img, const std::vector<std::pair<int, int>>& pixels) {
+    std::vector<Vec3> v;
+    v.reserve(pixels.size());
+    for (const auto& [x, y] : pixels) {
+        if (x < 0 || y < 0 || x >= img.width || y >= img.height)
+            throw InputError("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the image");
+        v.push_back(img.at(x, y));
+    }
+    return v;
+}
+
+std::vector<RadialBin> radial_profile(const Image& img, double cx, double cy, int bins, double max_radius) {
+    if (bins < 1 || !(max_radius > 0) || !std::isfinite(max_radius) || !std::isfinite(cx) || !std::isfinite(cy))
+        throw InputError("radial profile: needs bins >= 1, a finite centre and a finite radius > 0");
+    std::vector<RadialBin> out(static_cast<size_t>(bins));
+    const double w = max_radius / bins;
+    for (int k = 0; k < bins; ++k) out[static_cast<size_t>(k)].r0 = k * w, out[static_cast<size_t>(k)].r1 = (k + 1) * w;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const double r = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
+            if (r >= max_radius) continue;
+            RadialBin& b = out[static_cast<size_t>(std::min(bins - 1, static_cast<int>(r / w)))];
+            b.mean += img.at(x, y);
+            ++b.pixels;
+        }
+    for (auto& b : out)
+        if (b.pixels > 0) b.mean /= static_cast<double>(b.pixels);
+    return out;
+}
+
+}  // namespace refract::validation
