@@ -212,6 +212,12 @@ TEST_CASE("Ohtsuka driver (quick) writes images, tables and studies; the shortcu
     REQUIRE(thr.rows.size() == 6);
     CHECK(std::stod(thr.rows[5][3]) > std::stod(thr.rows[0][3]));         // larger threshold, fewer segments
     CHECK(std::stod(thr.rows[5][3]) > 1.0);
+    // The light the limits drop: the paper's 8/8 limits drop weight; deeper trees drop less.
+    const experiments::Csv lost = experiments::read_csv((d / "lost_light.csv").string());
+    REQUIRE(lost.rows.size() == 5);
+    CHECK(std::stod(lost.rows[0][4]) > 0);                                  // lost_limits, 8/8
+    CHECK(std::stod(lost.rows[2][4]) == 0);                                 // no limits
+    CHECK(std::stod(lost.rows[4][6]) < std::stod(lost.rows[2][6]));         // lost_total falls with depth
     const Scene s = load_scene((d / "scene.json").string());
     CHECK(s.settings.spectral.max_reflections.value_or(0) == 8);
     CHECK(s.materials.at(s.objects.at(1).material).dielectric()->dispersion->label.find("iamond") != std::string::npos);
