@@ -1,6 +1,7 @@
 // refract render SCENE.json -o IMAGE [--threads N] [--stats]
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "cli/commands.h"
 #include "core/polarisation_output.h"
@@ -15,6 +16,7 @@ struct RenderArgs {
     bool stats = false;
     bool linear16 = false;
     bool lost = false;
+    bool spectral = false;
 };
 
 refract::cli::Registrar reg{10, [](CLI::App& app) {
@@ -25,6 +27,9 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it");
     sub->add_flag("--stats", args->stats, "Print ray, tree and list counters");
     sub->add_flag("--linear16", args->linear16, "PNG output as 16-bit linear instead of 8-bit sRGB");
+    sub->add_flag("--spectral-channels", args->spectral,
+                  "Also write IMAGE.spectral.exr: the light at every wavelength of the spectral eye pass, one "
+                  "channel each (names like 550nm; the wavelengths also in the header attribute refract:wavelengths_nm)");
     sub->add_flag("--lost-energy", args->lost,
                   "Also write IMAGE.lost.exr: per pixel the weight dropped by the depth limit, the "
                   "reflection/transmission limits and the threshold");
@@ -33,10 +38,24 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         refract::RenderOptions opt;
         opt.threads = args->threads;
         opt.progress = refract::cli::stderr_is_terminal();
+        opt.spectral_channels = args->spectral;
         const auto result = refract::render(scene, opt);
         refract::write_image(args->output, result.image, {args->linear16});
         if (result.polarisation)
             refract::write_polarisation(args->output, result.image.width, result.image.height, *result.polarisation);
+        if (args->spectral) {
+            const std::filesystem::path p(args->output);
+            std::vector<std::string> names;
+            std::string list;
+            for (double nm : result.wavelengths) {
+                std::ostringstream s;
+                s << nm;
+                names.push_back(s.str() + "nm");
+                list += (list.empty() ? "" : " ") + s.str();
+            }
+            refract::write_channels((p.parent_path() / p.stem()).string() + ".spectral.exr", result.image.width,
+                                    result.image.height, names, result.spectral, {{"refract:wavelengths_nm", list}});
+        }
         if (args->lost) {
             const std::filesystem::path p(args->output);
             refract::write_channels((p.parent_path() / p.stem()).string() + ".lost.exr", result.image.width,

@@ -69,13 +69,15 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
 }
 
 void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
-                    const std::vector<double>& data) {
+                    const std::vector<double>& data,
+                    const std::vector<std::pair<std::string, std::string>>& attributes) {
     if (lower_extension(path) != ".exr") throw InputError(path + ": named channels need an .exr file");
     const size_t n = static_cast<size_t>(width) * height * names.size();
     if (width <= 0 || height <= 0 || names.empty() || data.size() != n)
         throw InputError(path + ": channel data do not match the image size");
     OIIO::ImageSpec spec(width, height, static_cast<int>(names.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames = names;
+    for (const auto& [name, value] : attributes) spec.attribute(name, value);
     std::vector<float> buf(n);
     for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(data[k]);
     write_atomically(path, spec, buf.data());

@@ -3,6 +3,7 @@
 // chosen by the extension: .exr (linear, float), .png/.jpg/.tif... (sRGB-encoded 8-bit,
 // or 16-bit for .png with `linear16`), .hdr/.pfm (linear).
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/ray.h"
@@ -36,8 +37,10 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
 
 // A float OpenEXR file with the given channel names; `data` interleaved, row-major
 // (names.size() values per pixel). Atomic like write_image.
+// `attributes`: string metadata (name, value) stored in the file's header.
 void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
-                    const std::vector<double>& data);
+                    const std::vector<double>& data,
+                    const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
 // Reads any image OpenImageIO can read, as stored (integer formats scaled to [0, 1],
 // no transfer function applied: POV-Ray's File_Gamma=1.0 PNGs are linear as read).

@@ -117,7 +117,8 @@ void validate(const Scene& scene) {
             throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
 }
 
-Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral) {
+Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
+                 std::vector<double>* band_light = nullptr) {
     const Scene& scene = tracer.scene();
     const RenderSettings& s = scene.settings;
     const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
@@ -132,7 +133,7 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
         const Ray ray = scene.camera.ray(x, y);
         ++stats.primary_rays;
         if (spectral) {
-            sum += spectral_radiance(tracer, *spectral, ray, stats);
+            sum += spectral_radiance(tracer, *spectral, ray, stats, band_light);
             continue;
         }
         switch (s.integrator) {
@@ -141,6 +142,8 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
             case IntegratorKind::Stochastic: sum += stochastic_radiance(tracer, ray, rng, stats); break;
         }
     }
+    if (band_light)
+        for (double& b : *band_light) b /= s.samples;
     return spectral ? spectral->finish(sum / s.samples) : Vec3(sum / s.samples);
 }
 
@@ -218,7 +221,14 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     }
     const SpectralContext* spectral = ctx ? &*ctx : nullptr;
     const int W = scene.camera.width, H = scene.camera.height;
-    RenderResult result{Image(W, H), {}, std::vector<double>(3 * static_cast<size_t>(W) * H), std::nullopt};
+    RenderResult result{Image(W, H), {}, std::vector<double>(3 * static_cast<size_t>(W) * H), {}, {}, std::nullopt};
+    if (opt.spectral_channels) {
+        const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
+        if (!spectral || spectral->pov || scene.settings.polarisation != PolarisationModel::Natural)
+            throw InputError(f + ": spectral channels need the spectral eye pass in the physical mode with natural light");
+        result.wavelengths = spectral->wavelengths;
+        result.spectral.assign(spectral->bands() * static_cast<size_t>(W) * H, 0.0);
+    }
     const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
     if (exact) {
         const size_t n = static_cast<size_t>(W) * H;
@@ -248,7 +258,12 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                             p.dolp[px] = lp.dolp;
                             p.aolp[px] = lp.aolp;
                         } else {
-                            result.image.set(i, j, pixel_value(tracer, i, j, st, spectral));
+                            std::vector<double> bands(result.wavelengths.size(), 0.0);
+                            result.image.set(i, j, pixel_value(tracer, i, j, st, spectral,
+                                                               opt.spectral_channels ? &bands : nullptr));
+                            std::copy(bands.begin(), bands.end(),
+                                      result.spectral.begin() +
+                                          static_cast<std::ptrdiff_t>(bands.size() * (static_cast<size_t>(j) * W + i)));
                         }
                         const size_t px = 3 * (static_cast<size_t>(j) * W + i);
                         result.lost[px] = st.lost_depth / scene.settings.samples;

@@ -54,6 +54,9 @@ struct RenderOptions {
     // Illumination maps of an earlier light pass of the same scene (render.light_pass):
     // used instead of running the light pass again.
     std::shared_ptr<const IlluminationMaps> maps;
+    // Spectral eye pass, physical mode, natural light: also the light of every wavelength
+    // per pixel (RenderResult::spectral; core/integrators/spectral.h spectral_radiance).
+    bool spectral_channels = false;
 };
 
 // Exact polarisation's images (render.polarisation "exact"): per pixel the Stokes vectors
@@ -71,6 +74,9 @@ struct RenderResult {
     // Per pixel the weight dropped by the depth limit, the reflection/transmission limits
     // and the threshold (RenderStats::lost_*), per primary sample: 3 values per pixel.
     std::vector<double> lost;
+    // With RenderOptions::spectral_channels: per pixel the light at each of `wavelengths`
+    // (nm), the samples averaged; wavelengths.size() values per pixel.
+    std::vector<double> wavelengths, spectral;
     std::optional<PolarisationImages> polarisation;
 };
 

@@ -104,13 +104,14 @@ public:
     using List = typename Walker::List;
     using Acc = decltype(seen(P{}, Vec3(), Vec3()));
 
-    SpectralEnds(const SceneTracer& t, const SpectralContext& c, RenderStats& s) : tracer_(t), ctx_(c), stats_(s) {
+    SpectralEnds(const SceneTracer& t, const SpectralContext& c, RenderStats& s, std::vector<double>* bands = nullptr)
+        : tracer_(t), ctx_(c), stats_(s), bands_(bands) {
         sum.setZero();
     }
 
     Acc sum;
 
-    void background(const Entry& e) { sum += seen(e.pol, e.weight, tracer_.background(e.ray.dir)); }
+    void background(const Entry& e) { add(e, seen(e.pol, e.weight, tracer_.background(e.ray.dir))); }
 
     void leaf(const Entry& e, const SurfaceHit& h) {
         Vec3 local = tracer_.local_light(h, stats_);
@@ -121,7 +122,7 @@ public:
             const int obj = static_cast<int>(h.object - tracer_.scene().objects.data());
             local += (d ? d->diffuse : 1.0) * tracer_.pigment(pig, h.hit.point).cwiseProduct(ctx_.maps->irradiance(obj, h.hit));
         }
-        sum += seen(e.pol, e.weight, local);
+        add(e, seen(e.pol, e.weight, local));
     }
 
     double wavelength(const Entry& e) const {
@@ -140,9 +141,21 @@ public:
     }
 
 private:
+    // A branch's light: to the sum, and to the per-wavelength light when it is asked for.
+    void add(const Entry& e, const Acc& c) {
+        sum += c;
+        if (!bands_) return;
+        const double v = rgb_of(c).mean();
+        if (e.band < 0) {
+            for (double& b : *bands_) b += v;
+        } else if (static_cast<size_t>(e.band) < bands_->size()) {
+            (*bands_)[static_cast<size_t>(e.band)] += v;
+        }
+    }
+
     // Walks `list` with fresh ends and returns its light.
     Acc subwalk(Walker& w, List& list) {
-        SpectralEnds sub(tracer_, ctx_, stats_);
+        SpectralEnds sub(tracer_, ctx_, stats_, bands_);
         w.walk(list, sub);
         return sub.sum;
     }
@@ -153,7 +166,7 @@ private:
         Entry eb = e;
         eb.band = static_cast<std::int16_t>(band);
         List list;
-        SpectralEnds sub(tracer_, ctx_, stats_);
+        SpectralEnds sub(tracer_, ctx_, stats_, bands_);
         w.expand(eb, h, ctx_.index[static_cast<size_t>(band)][static_cast<size_t>(h.object->material)], list, sub);
         w.walk(list, sub);
         stats_.wavelength_segments += stats_.segments - before;
@@ -207,7 +220,10 @@ private:
             const double d = std::fmax((r0 - r1).norm(), std::fmax((r1 - r2).norm(), (r0 - r2).norm()));
             if (d < ctx_.shortcut_threshold) {
                 ++stats_.shortcut_taken;
-                return (c0 + c1 + c2) / 3.0;
+                const Acc mean = (c0 + c1 + c2) / 3.0;
+                if (bands_)
+                    for (double& b : *bands_) b += rgb_of(mean).mean();
+                return mean;
             }
         }
         for (const int k : ctx_.split_bands[mi]) sum += tinted(ctx_.weights[static_cast<size_t>(k)], band_tree(w, e, h, k));
@@ -217,15 +233,16 @@ private:
     const SceneTracer& tracer_;
     const SpectralContext& ctx_;
     RenderStats& stats_;
+    std::vector<double>* bands_;
 };
 
 template <class P>
 auto walk_spectral(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary, const P& start,
-                   RenderStats& stats) {
+                   RenderStats& stats, std::vector<double>* bands = nullptr) {
     TreeLimits limits = ctx.limits(tracer.settings());
     limits.band_weights = &ctx.weights;
     RayTreeWalkerT<P> walker(tracer, limits, stats);
-    SpectralEnds<P> ends(tracer, ctx, stats);
+    SpectralEnds<P> ends(tracer, ctx, stats, bands);
     typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{primary, Vec3(1, 1, 1)}};
     list.front().pol = start;
     walker.walk(list, ends);
@@ -242,8 +259,8 @@ TreeLimits SpectralContext::limits(const RenderSettings& s) const {
 }
 
 Vec3 spectral_radiance(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
-                       RenderStats& stats) {
-    return walk_spectral(tracer, ctx, primary, NaturalLight{}, stats);
+                       RenderStats& stats, std::vector<double>* band_light) {
+    return walk_spectral(tracer, ctx, primary, NaturalLight{}, stats, band_light);
 }
 
 StokesRGB spectral_stokes(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,

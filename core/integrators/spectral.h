@@ -60,9 +60,13 @@ struct SpectralContext {
     static SpectralContext build(const Scene& scene);
 };
 
-// Radiance (RGB, not yet finished) along a primary ray.
+// Radiance (RGB, not yet finished) along a primary ray. `band_light` (size bands(), when
+// given): adds each wavelength's light, the mean of its channels before the band's RGB
+// weight: a band walk's light to its band, light that never split (an RGB ray's) to every
+// band, a taken shortcut's mean to every band. Exact for colour-neutral scenes, whose
+// channels are equal at every wavelength; physical mode only.
 Vec3 spectral_radiance(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
-                       RenderStats& stats);
+                       RenderStats& stats, std::vector<double>* band_light = nullptr);
 // The same with exact polarisation: Stokes vectors per colour channel (not yet finished).
 StokesRGB spectral_stokes(const SceneTracer& tracer, const SpectralContext& ctx, const Ray& primary,
                           const EyeStokes& start, RenderStats& stats);
