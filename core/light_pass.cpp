@@ -54,7 +54,8 @@ struct PhotonEnds {
         // length, so that light passing through an index-1 object lands exactly
         // as the direct light would.
         const double D = e.travelled + h.hit.t;
-        const double falloff = (D * D) / (dref * dref);
+        // A directional light (dref 0) has parallel photons and no falloff.
+        const double falloff = dref > 0 ? (D * D) / (dref * dref) : 1.0;
         const Vec3 pw = power(e);
         for (int c = 0; c < 3; ++c)
             acc.sums[obj][3 * static_cast<size_t>(el) + c].fetch_add(
@@ -141,16 +142,30 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         for (auto& a : v) a.store(0, std::memory_order_relaxed);
 
     // Emitters: (light, target) pairs, photons split evenly over the targets.
+    // A point light shoots into the cone around a target; a directional light shoots
+    // parallel photons through the disk of the target's radius across its direction.
     struct Emitter {
         Vec3 origin, axis, power;  // power: flux of one photon at the reference distance
-        double cos_max, dref;
+        double cos_max, dref;      // dref 0: directional
         std::uint64_t photons, stream;
         size_t light;
+        double radius = 0;         // directional: the disk's radius
     };
     std::vector<Emitter> emitters;
     double max_power = 0;
     for (size_t l = 0; l < scene.lights.size(); ++l) {
-        const PointLight& L = scene.lights[l];
+        const Light& L = scene.lights[l];
+        if (L.kind == Light::Kind::Directional) {
+            for (size_t t = 0; t < targets.size(); ++t) {
+                const double R = targets[t].radius;
+                const std::uint64_t n = std::max<std::uint64_t>(1, lp.photons / targets.size());
+                const Vec3 power = L.color * (M_PI * R * R / static_cast<double>(n));  // irradiance × disk area
+                const Vec3 origin = targets[t].centre - (R * 1.01 + 1e-6) * L.direction;
+                emitters.push_back({origin, L.direction, power, 1.0, 0.0, n, l * targets.size() + t, l, R});
+                max_power = std::fmax(max_power, power.cwiseAbs().maxCoeff() * static_cast<double>(n));
+            }
+            continue;
+        }
         const double dref = (centre - L.position).norm();
         for (size_t t = 0; t < targets.size(); ++t) {
             const Vec3 to = targets[t].centre - L.position;
@@ -161,7 +176,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
             const double omega = 2.0 * M_PI * (1.0 - cos_max);
             const std::uint64_t n = std::max<std::uint64_t>(1, lp.photons / targets.size());
             const Vec3 power = L.color * (dref * dref * omega / static_cast<double>(n));
-            emitters.push_back({L.position, to / d, power, cos_max, dref, n, l * targets.size() + t, l});
+            emitters.push_back({L.position, to / d, power, cos_max, dref, n, l * targets.size() + t, l, 0.0});
             max_power = std::fmax(max_power, power.cwiseAbs().maxCoeff() * static_cast<double>(n));
         }
     }
@@ -174,22 +189,28 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
 
     auto trace_photon = [&](const Emitter& em, std::uint64_t p, RenderStats& st, std::uint64_t& dep) {
         Rng rng(lp.seed, em.stream, p);
-        const double cos_t = 1.0 - rng.uniform() * (1.0 - em.cos_max);
+        const double xi = rng.uniform();
         const double phi = 2.0 * M_PI * rng.uniform();
-        const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
         const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
         const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
-        const Vec3 dir = (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized();
+        Vec3 origin = em.origin, dir = em.axis;
+        if (em.dref > 0) {  // uniform in the cone's solid angle
+            const double cos_t = 1.0 - xi * (1.0 - em.cos_max);
+            const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
+            dir = (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized();
+        } else {  // uniform over the disk's area
+            origin += em.radius * std::sqrt(xi) * (std::cos(phi) * u + std::sin(phi) * v);
+        }
         if (exact) {
             RayTreeWalkerT<LightStokes> walker(tracer, limits, st);
             PhotonEnds<LightStokes> ends{scene, ctx, *maps, acc, em.dref, st, dep};
-            RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{Ray{em.origin, dir}, em.power}};
+            RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{Ray{origin, dir}, em.power}};
             list.front().pol = emitted(scene.lights[em.light].polarisation, dir);
             walker.walk(list, ends);
         } else {
             RayTreeWalker walker(tracer, limits, st);
             PhotonEnds<NaturalLight> ends{scene, ctx, *maps, acc, em.dref, st, dep};
-            RayTreeWalker::List list{TreeEntry{Ray{em.origin, dir}, em.power}};
+            RayTreeWalker::List list{TreeEntry{Ray{origin, dir}, em.power}};
             walker.walk(list, ends);
         }
     };

@@ -36,10 +36,21 @@ struct PolarisationState {
     int handedness = 1;  // Circular: sign of S3 (+1: left-circular in Born & Wolf's naming)
 };
 
-struct PointLight {
-    Vec3 position{0, 10, 0};
-    Vec3 color{1, 1, 1};  // no distance falloff (POV-Ray default)
+// A point light, or a directional one (a sun of no angular size): parallel light
+// travelling along `direction`, of irradiance `color` on a surface facing it. Shadow rays
+// of a directional light run to the plane across it at kDirectionalDistance from the
+// origin (where the POV-Ray export puts its `parallel` light).
+struct Light {
+    enum class Kind { Point, Directional };
+    Vec3 position{0, 10, 0};  // point light
+    Vec3 color{1, 1, 1};      // no distance falloff (POV-Ray default)
     PolarisationState polarisation;  // what the light pass's photons start with
+    Kind kind = Kind::Point;
+    Vec3 direction{0, -1, 0};  // directional: unit, the way the light travels
+
+    static constexpr double kDirectionalDistance = 1e5;
+    // Directional: the point standing for the light (the export's light_source location).
+    Vec3 directional_position() const { return -kDirectionalDistance * direction; }
 };
 
 struct Background {
@@ -108,7 +119,7 @@ struct Scene {
     Camera camera;
     std::vector<Material> materials;
     std::vector<Object> objects;
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;
     Background background;
     RenderSettings settings;
 };

@@ -424,10 +424,21 @@ Scene parse_scene(const json& j, const std::string& file) {
         for (size_t k = 0; k < ls.size(); ++k) {
             const JsonReader l(ls[k], file, "/lights/" + std::to_string(k));
             if (!ls[k].is_object()) l.fail("must be an object");
-            l.only({"type", "position", "color", "polarisation"});
             const std::string type = l.string("type", "point");
-            if (type != "point") l.fail_at("type", "unknown light type '" + type + "' (point)");
-            PointLight light{l.vec3("position"), l.vec3("color", Vec3(1, 1, 1)), {}};
+            Light light;
+            if (type == "point") {
+                l.only({"type", "position", "color", "polarisation"});
+                light.position = l.vec3("position");
+            } else if (type == "directional") {
+                l.only({"type", "direction", "color", "polarisation"});
+                light.kind = Light::Kind::Directional;
+                const Vec3 d = l.vec3("direction");
+                if (!(d.norm() > 0) || !d.allFinite()) l.fail_at("direction", "must be a finite, non-zero vector");
+                light.direction = d.normalized();
+            } else {
+                l.fail_at("type", "unknown light type '" + type + "' (point, directional)");
+            }
+            light.color = l.vec3("color", Vec3(1, 1, 1));
             if (l.has("polarisation")) light.polarisation = parse_polarisation_state(l.child("polarisation"), true);
             s.lights.push_back(light);
         }

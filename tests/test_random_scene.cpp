@@ -111,7 +111,7 @@ TEST_CASE("Random scenes 0-299 parse, export to POV-Ray (100 %) and cover every 
         CHECK(scene.settings.threshold >= 0);
         CHECK(scene.settings.threshold <= 0.1);
         CHECK(scene.lights.size() <= 3);
-        for (const PointLight& l : scene.lights) CHECK(l.color.minCoeff() > 0);
+        for (const Light& l : scene.lights) CHECK(l.color.minCoeff() > 0);
 
         int planes = 0, others = 0, dispersive = 0;
         for (const auto& o : j["objects"]) {

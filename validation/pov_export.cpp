@@ -408,7 +408,17 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     o << "\n}\n";
     o << camera(s.camera);
     o << background(s.background);
-    for (const PointLight& l : s.lights) o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
+    for (const Light& l : s.lights) {
+        if (l.kind == Light::Kind::Directional) {
+            // POV-Ray's parallel light: shadow rays along −direction to the plane through
+            // the location (trace.cpp ComputeOneWhiteLightRay), as refract's directional light.
+            const Vec3 at = l.directional_position();
+            o << "light_source { " << vec(at) << " color rgb " << vec(l.color) << " parallel point_at " << vec(at + l.direction)
+              << " }\n";
+        } else {
+            o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
+        }
+    }
 
     bool fresnel_glass = false;  // the only rule a container changes is Fresnel at exits
     for (const Object& obj : s.objects) {
