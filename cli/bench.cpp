@@ -55,11 +55,14 @@ void compare_polarisation(const nlohmann::json& scene, const refract::RenderOpti
     const Scene natural = experiments::scene_from_json(scene, "bench natural");
     const Scene exact = experiments::scene_from_json(ej, "bench exact");
     std::vector<double> wall[2], cpu[2], ratio_wall, ratio_cpu;
+    std::uint64_t segments[2] = {0, 0}, photon_segments[2] = {0, 0};
     for (int k = 0; k < pairs; ++k)
         for (int m = 0; m < 2; ++m) {
             const double c0 = cpu_seconds();
             const RenderResult r = render(m == 0 ? natural : exact, opt);
             wall[m].push_back(r.stats.seconds);
+            segments[m] = r.stats.segments;
+            photon_segments[m] = r.stats.photon_segments;
             cpu[m].push_back(cpu_seconds() - c0);
             if (m == 1) {
                 ratio_wall.push_back(wall[1].back() / wall[0].back());
@@ -71,6 +74,12 @@ void compare_polarisation(const nlohmann::json& scene, const refract::RenderOpti
                   << " median " << std::setw(8) << median(v) << "  min " << std::setw(8)
                   << *std::min_element(v.begin(), v.end()) << "\n";
     };
+    // The same work: both models walk the same trees (the threshold uses natural-light
+    // weights), so they trace the same segments.
+    std::cout << "  segments traced, natural / exact: eye " << segments[0] << " / " << segments[1] << ", light "
+              << photon_segments[0] << " / " << photon_segments[1]
+              << (segments[0] == segments[1] && photon_segments[0] == photon_segments[1] ? " (the same)" : " (differ)")
+              << "\n";
     row("natural light + eye pass, wall (s)", wall[0]);
     row("exact light + eye pass, wall (s)", wall[1]);
     row("natural light + eye pass, CPU (s)", cpu[0]);

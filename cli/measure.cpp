@@ -27,6 +27,46 @@ std::string csv_number(double v) {
     return s.str();
 }
 
+// The measurement the options ask for, as CSV text.
+std::string measure_csv(const MeasureArgs& a, const refract::Image& img) {
+    using namespace refract;
+    namespace v = refract::validation;
+    std::ostringstream csv;
+    if (!a.line.empty()) {
+        const auto pixels = v::line_pixels(a.line[0], a.line[1], a.line[2], a.line[3]);
+        const auto values = v::values_at(img, pixels);
+        csv << "x,y,distance,r,g,b\n";
+        for (size_t k = 0; k < pixels.size(); ++k)
+            csv << pixels[k].first << "," << pixels[k].second << ","
+                << csv_number(std::hypot(pixels[k].first - a.line[0], pixels[k].second - a.line[1])) << ","
+                << csv_number(values[k].x()) << "," << csv_number(values[k].y()) << "," << csv_number(values[k].z()) << "\n";
+    } else if (!a.radial.empty()) {
+        csv << "r0,r1,pixels,r,g,b\n";
+        for (const auto& b : v::radial_profile(img, a.radial[0], a.radial[1], a.bins, a.radial[2]))
+            csv << csv_number(b.r0) << "," << csv_number(b.r1) << "," << b.pixels << "," << csv_number(b.mean.x()) << ","
+                << csv_number(b.mean.y()) << "," << csv_number(b.mean.z()) << "\n";
+    } else {
+        v::PixelRect rect{0, 0, img.width - 1, img.height - 1};
+        if (!a.region.empty()) rect = {a.region[0], a.region[1], a.region[2], a.region[3]};
+        std::optional<Image> m;
+        if (!a.mask.empty()) m = read_image(a.mask);
+        v::RegionStats s;
+        try {
+            s = v::region_stats(img, rect, m ? &*m : nullptr);
+        } catch (const InputError& e) {
+            throw InputError(a.image + ": " + e.what());
+        }
+        csv << "channel,pixels,mean,sum,min,max\n";
+        const char* names[3] = {"r", "g", "b"};
+        for (int c = 0; c < 3; ++c) {
+            const auto& ch = s.channel[static_cast<size_t>(c)];
+            csv << names[c] << "," << s.pixels << "," << csv_number(ch.mean) << "," << csv_number(ch.sum) << ","
+                << csv_number(ch.min) << "," << csv_number(ch.max) << "\n";
+        }
+    }
+    return csv.str();
+}
+
 refract::cli::Registrar reg{55, [](CLI::App& app) {
     auto a = std::make_shared<MeasureArgs>();
     auto* sub = app.add_subcommand("measure", "Measure an image: region statistics, a line profile or a radial profile, as CSV");
@@ -43,41 +83,14 @@ refract::cli::Registrar reg{55, [](CLI::App& app) {
         using namespace refract;
         namespace v = refract::validation;
         const Image img = read_image(a->image);
-        std::ostringstream csv;
-        if (!a->line.empty()) {
-            const auto pixels = v::line_pixels(a->line[0], a->line[1], a->line[2], a->line[3]);
-            const auto values = v::values_at(img, pixels);
-            csv << "x,y,distance,r,g,b\n";
-            for (size_t k = 0; k < pixels.size(); ++k)
-                csv << pixels[k].first << "," << pixels[k].second << ","
-                    << csv_number(std::hypot(pixels[k].first - a->line[0], pixels[k].second - a->line[1])) << ","
-                    << csv_number(values[k].x()) << "," << csv_number(values[k].y()) << "," << csv_number(values[k].z()) << "\n";
-        } else if (!a->radial.empty()) {
-            csv << "r0,r1,pixels,r,g,b\n";
-            for (const auto& b : v::radial_profile(img, a->radial[0], a->radial[1], a->bins, a->radial[2]))
-                csv << csv_number(b.r0) << "," << csv_number(b.r1) << "," << b.pixels << "," << csv_number(b.mean.x()) << ","
-                    << csv_number(b.mean.y()) << "," << csv_number(b.mean.z()) << "\n";
-        } else {
-            v::PixelRect rect{0, 0, img.width - 1, img.height - 1};
-            if (!a->region.empty()) rect = {a->region[0], a->region[1], a->region[2], a->region[3]};
-            std::optional<Image> m;
-            if (!a->mask.empty()) m = read_image(a->mask);
-            v::RegionStats s;
-            try {
-                s = v::region_stats(img, rect, m ? &*m : nullptr);
-            } catch (const InputError& e) {
-                throw InputError(a->image + ": " + e.what());
-            }
-            csv << "channel,pixels,mean,sum,min,max\n";
-            const char* names[3] = {"r", "g", "b"};
-            for (int c = 0; c < 3; ++c) {
-                const auto& ch = s.channel[static_cast<size_t>(c)];
-                csv << names[c] << "," << s.pixels << "," << csv_number(ch.mean) << "," << csv_number(ch.sum) << ","
-                    << csv_number(ch.min) << "," << csv_number(ch.max) << "\n";
-            }
+        std::string csv;
+        try {
+            csv = measure_csv(*a, img);
+        } catch (const InputError& e) {
+            throw InputError(a->image + ": " + e.what());  // name the image measured
         }
-        if (a->output.empty()) std::cout << csv.str();
-        else validation::write_text_file(a->output, csv.str());
+        if (a->output.empty()) std::cout << csv;
+        else validation::write_text_file(a->output, csv);
     });
 }};
 

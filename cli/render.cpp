@@ -39,6 +39,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         opt.threads = args->threads;
         opt.progress = refract::cli::stderr_is_terminal();
         opt.spectral_channels = args->spectral;
+        opt.lost_energy = args->lost;
         const auto result = refract::render(scene, opt);
         refract::write_image(args->output, result.image, {args->linear16});
         if (result.polarisation)

@@ -42,13 +42,29 @@ std::optional<S> cos_transmitted(S cos_i, S eta) {
     return sqrt(S(1.0) - sin2_t);
 }
 
+// Fresnel amplitude coefficients of the s and p components (Hecht, Optics, §4.6.2, in the
+// basis ŝ = n × k̂, p̂ = k̂ × ŝ of each beam; core/polarisation.h):
+//   rs = (cos θi − η cos θt)/(cos θi + η cos θt),  rp = (η cos θi − cos θt)/(η cos θi + cos θt),
+//   ts = 2 cos θi/(cos θi + η cos θt),             tp = 2 cos θi/(η cos θi + cos θt).
+template <class S>
+struct SPPair {
+    S s, p;
+};
+template <class S>
+SPPair<S> fresnel_reflection_amplitudes(S cos_i, S cos_t, S eta) {
+    const S n_ct = eta * cos_t, n_ci = eta * cos_i;
+    return {(cos_i - n_ct) / (cos_i + n_ct), (n_ci - cos_t) / (n_ci + cos_t)};
+}
+template <class S>
+SPPair<S> fresnel_transmission_amplitudes(S cos_i, S cos_t, S eta) {
+    return {S(2.0) * cos_i / (cos_i + eta * cos_t), S(2.0) * cos_i / (eta * cos_i + cos_t)};
+}
+
 // Yasuda eq. 7 (n = eta, Ci = cos θi, Cr = cos θt): s and p amplitude ratios squared.
 template <class S>
 FresnelTerms<S> fresnel_terms(S cos_i, S cos_t, S eta) {
-    const S n_ct = eta * cos_t, n_ci = eta * cos_i;
-    const S rs = (cos_i - n_ct) / (cos_i + n_ct);
-    const S rp = (n_ci - cos_t) / (n_ci + cos_t);
-    return FresnelTerms<S>{rs * rs, rp * rp, cos_t};
+    const SPPair<S> r = fresnel_reflection_amplitudes(cos_i, cos_t, eta);
+    return FresnelTerms<S>{r.s * r.s, r.p * r.p, cos_t};
 }
 
 template <class S>

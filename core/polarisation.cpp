@@ -9,13 +9,10 @@ namespace refract::polar {
 
 FresnelAmplitudes fresnel_amplitudes(double cos_i, double eta) {
     if (const auto cos_t = optics::cos_transmitted(cos_i, eta)) {
-        // Same arithmetic as optics::generic::fresnel_terms, so rs², rp² are its Rs, Rp.
-        const double ct = *cos_t, n_ct = eta * ct, n_ci = eta * cos_i;
-        const double rs = (cos_i - n_ct) / (cos_i + n_ct);
-        const double rp = (n_ci - ct) / (n_ci + ct);
-        const double ts = 2.0 * cos_i / (cos_i + n_ct);
-        const double tp = 2.0 * cos_i / (n_ci + ct);
-        return FresnelAmplitudes{rs, rp, ts, tp, ct, false};
+        // The laws of core/optics.h, so rs², rp² are optics::fresnel's Rs, Rp exactly.
+        const auto r = optics::generic::fresnel_reflection_amplitudes(cos_i, *cos_t, eta);
+        const auto t = optics::generic::fresnel_transmission_amplitudes(cos_i, *cos_t, eta);
+        return FresnelAmplitudes{r.s, r.p, t.s, t.p, *cos_t, false};
     }
     // TIR: cos θt = iγ; rs = (c − iηγ)/(c + iηγ), rp = (ηc − iγ)/(ηc + iγ), written as
     // exact unit-modulus phasors. ηγ = sqrt(sin²θi − η²) is computed as in

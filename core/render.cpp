@@ -117,6 +117,17 @@ void validate(const Scene& scene) {
             throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
 }
 
+// The primary ray of one sample of pixel (i, j): through its centre, or jittered with
+// the sample's own random stream (which the stochastic integrator then continues).
+Ray sample_ray(const Scene& scene, int i, int j, Rng& rng) {
+    double x = i + 0.5, y = j + 0.5;
+    if (scene.settings.jitter) {
+        x = i + rng.uniform();
+        y = j + rng.uniform();
+    }
+    return scene.camera.ray(x, y);
+}
+
 Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
                  std::vector<double>* band_light = nullptr) {
     const Scene& scene = tracer.scene();
@@ -125,12 +136,7 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
     Vec3 sum(0, 0, 0);
     for (int k = 0; k < s.samples; ++k) {
         Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-        double x = i + 0.5, y = j + 0.5;
-        if (s.jitter) {
-            x = i + rng.uniform();
-            y = j + rng.uniform();
-        }
-        const Ray ray = scene.camera.ray(x, y);
+        const Ray ray = sample_ray(scene, i, j, rng);
         ++stats.primary_rays;
         if (spectral) {
             sum += spectral_radiance(tracer, *spectral, ray, stats, band_light);
@@ -147,6 +153,31 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
     return spectral ? spectral->finish(sum / s.samples) : Vec3(sum / s.samples);
 }
 
+// The extra per-pixel images a render keeps are bounded (2^28 values, 2 GiB), and the
+// spectral channels need the physical spectral pass with natural light: checked before
+// any work.
+void check_channels(const Scene& scene, const RenderOptions& opt) {
+    const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
+    const RenderSettings& s = scene.settings;
+    const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
+    constexpr double kMaxValues = 268435456.0;
+    auto bound = [&](double per_pixel, const std::string& what) {
+        if (per_pixel * pixels > kMaxValues)
+            throw InputError(f + ": " + what + " of a " + std::to_string(scene.camera.width) + "x" +
+                             std::to_string(scene.camera.height) + " image would hold " +
+                             std::to_string(static_cast<long long>(per_pixel * pixels)) +
+                             " values (at most 2^28): use a smaller image");
+    };
+    if (s.polarisation == PolarisationModel::Exact) bound(14, "/render/polarisation: the Stokes, DoLP and AoLP images");
+    if (opt.lost_energy) bound(3, "the lost-energy image");
+    if (opt.spectral_channels) {
+        if (!s.spectral.enabled || s.compat == Compat::PovRay || s.polarisation != PolarisationModel::Natural)
+            throw InputError(f + ": spectral channels need the spectral eye pass in the physical mode with natural light");
+        const std::string where = f + ": /render/spectral";
+        bound(static_cast<double>(spectrum::sample_wavelengths(s.spectral.sampling, where).size()), "the spectral channels");
+    }
+}
+
 // Exact polarisation: the Stokes vectors of pixel (i, j), the samples averaged, S0
 // finished as the RGB image is; `lp` from the sum of the channels before that finish (the
 // cie-rgb pipeline clips S0 at 0, not S1–S3).
@@ -158,12 +189,7 @@ StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& sta
     StokesRGB sum = StokesRGB::Zero();
     for (int k = 0; k < s.samples; ++k) {
         Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-        double x = i + 0.5, y = j + 0.5;
-        if (s.jitter) {
-            x = i + rng.uniform();
-            y = j + rng.uniform();
-        }
-        const Ray ray = scene.camera.ray(x, y);
+        const Ray ray = sample_ray(scene, i, j, rng);
         ++stats.primary_rays;
         const EyeStokes start = camera_stokes(scene, ray);
         sum += spectral ? spectral_stokes(tracer, *spectral, ray, start, stats)
@@ -177,7 +203,7 @@ StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& sta
 
 }  // namespace
 
-Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
+StokesRGB render_pixel_stokes(const Scene& scene, int i, int j, RenderStats* stats) {
     validate(scene);
     SceneTracer tracer(scene);
     RenderStats local;
@@ -190,16 +216,24 @@ Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
             ctx->maps = maps.get();
         }
     }
-    LinearPolarisation lp{};
-    const Vec3 v = scene.settings.polarisation == PolarisationModel::Exact
-                       ? Vec3(pixel_stokes(tracer, i, j, local, ctx ? &*ctx : nullptr, lp).row(0).transpose())
-                       : pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr);
+    StokesRGB v = StokesRGB::Zero();
+    if (scene.settings.polarisation == PolarisationModel::Exact) {
+        LinearPolarisation lp{};
+        v = pixel_stokes(tracer, i, j, local, ctx ? &*ctx : nullptr, lp);
+    } else {
+        v.row(0) = pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr).transpose();
+    }
     if (stats) stats->merge(local);
     return v;
 }
 
+Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
+    return render_pixel_stokes(scene, i, j, stats).row(0).transpose();
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
     validate(scene);
+    check_channels(scene, opt);
     const auto t0 = std::chrono::steady_clock::now();
     SceneTracer tracer(scene);
     const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
@@ -221,11 +255,9 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     }
     const SpectralContext* spectral = ctx ? &*ctx : nullptr;
     const int W = scene.camera.width, H = scene.camera.height;
-    RenderResult result{Image(W, H), {}, std::vector<double>(3 * static_cast<size_t>(W) * H), {}, {}, std::nullopt};
+    RenderResult result{Image(W, H), {}, {}, {}, {}, std::nullopt};
+    if (opt.lost_energy) result.lost.assign(3 * static_cast<size_t>(W) * H, 0.0);
     if (opt.spectral_channels) {
-        const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
-        if (!spectral || spectral->pov || scene.settings.polarisation != PolarisationModel::Natural)
-            throw InputError(f + ": spectral channels need the spectral eye pass in the physical mode with natural light");
         result.wavelengths = spectral->wavelengths;
         result.spectral.assign(spectral->bands() * static_cast<size_t>(W) * H, 0.0);
     }
@@ -265,10 +297,12 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                                       result.spectral.begin() +
                                           static_cast<std::ptrdiff_t>(bands.size() * (static_cast<size_t>(j) * W + i)));
                         }
-                        const size_t px = 3 * (static_cast<size_t>(j) * W + i);
-                        result.lost[px] = st.lost_depth / scene.settings.samples;
-                        result.lost[px + 1] = st.lost_limits / scene.settings.samples;
-                        result.lost[px + 2] = st.lost_threshold / scene.settings.samples;
+                        if (opt.lost_energy) {
+                            const size_t px = 3 * (static_cast<size_t>(j) * W + i);
+                            result.lost[px] = st.lost_depth / scene.settings.samples;
+                            result.lost[px + 1] = st.lost_limits / scene.settings.samples;
+                            result.lost[px + 2] = st.lost_threshold / scene.settings.samples;
+                        }
                         tile.merge(st);
                     }
                 const int d = ++done;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/polarisation_state.h"
 #include "core/scene.h"
 
 namespace refract {
@@ -57,6 +58,8 @@ struct RenderOptions {
     // Spectral eye pass, physical mode, natural light: also the light of every wavelength
     // per pixel (RenderResult::spectral; core/integrators/spectral.h spectral_radiance).
     bool spectral_channels = false;
+    // Also the per-pixel weight the limits and the threshold dropped (RenderResult::lost).
+    bool lost_energy = false;
 };
 
 // Exact polarisation's images (render.polarisation "exact"): per pixel the Stokes vectors
@@ -71,8 +74,9 @@ struct PolarisationImages {
 struct RenderResult {
     Image image;
     RenderStats stats;
-    // Per pixel the weight dropped by the depth limit, the reflection/transmission limits
-    // and the threshold (RenderStats::lost_*), per primary sample: 3 values per pixel.
+    // With RenderOptions::lost_energy: per pixel the weight dropped by the depth limit, the
+    // reflection/transmission limits and the threshold (RenderStats::lost_*), per primary
+    // sample: 3 values per pixel.
     std::vector<double> lost;
     // With RenderOptions::spectral_channels: per pixel the light at each of `wavelengths`
     // (nm), the samples averaged; wavelengths.size() values per pixel.
@@ -85,5 +89,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt = {});
 
 // Radiance along the primary ray(s) of pixel (i, j) alone, with the scene's settings.
 Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats = nullptr);
+// The same as Stokes vectors per colour channel (exact polarisation; natural light: S0 only).
+StokesRGB render_pixel_stokes(const Scene& scene, int i, int j, RenderStats* stats = nullptr);
 
 }  // namespace refract

@@ -51,6 +51,19 @@ struct Light {
     static constexpr double kDirectionalDistance = 1e5;
     // Directional: the point standing for the light (the export's light_source location).
     Vec3 directional_position() const { return -kDirectionalDistance * direction; }
+
+    // Seen from point p: the unit direction towards the light and where a shadow ray from
+    // p ends (a point light's position; for a directional light the plane across it
+    // through directional_position(), as POV-Ray's `parallel`: trace.cpp
+    // ComputeOneWhiteLightRay).
+    struct Toward {
+        Vec3 dir, end;
+    };
+    Toward toward(const Vec3& p) const {
+        if (kind == Kind::Directional)
+            return {-direction, p - (directional_position() - p).dot(-direction) * direction};
+        return {(position - p).normalized(), position};
+    }
 };
 
 struct Background {

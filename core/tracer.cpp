@@ -129,19 +129,10 @@ Vec3 SceneTracer::shade_diffuse(const SurfaceHit& h, const Pigment& pigment_, do
     const Vec3 pig = pigment(pigment_, h.hit.point);
     Vec3 c = ambient * pig;
     for (const Light& l : scene_.lights) {
-        double cos_l;
-        Vec3 target;  // where the shadow ray ends
-        if (l.kind == Light::Kind::Directional) {
-            // Parallel light: along −direction, to the plane across it through the light's
-            // point (POV-Ray's `parallel`: trace.cpp ComputeOneWhiteLightRay).
-            cos_l = -h.normal.dot(l.direction);
-            target = h.hit.point - (l.directional_position() - h.hit.point).dot(-l.direction) * l.direction;
-        } else {
-            cos_l = h.normal.dot((l.position - h.hit.point).normalized());
-            target = l.position;
-        }
+        const Light::Toward to = l.toward(h.hit.point);
+        const double cos_l = h.normal.dot(to.dir);
         if (cos_l <= 0) continue;
-        const Vec3 tr = light_transmittance(h.hit.point, target, stats);
+        const Vec3 tr = light_transmittance(h.hit.point, to.end, stats);
         c += diffuse * cos_l * pig.cwiseProduct(l.color).cwiseProduct(tr);
     }
     return c;

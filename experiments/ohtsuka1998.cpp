@@ -103,6 +103,7 @@ RenderResult eye_only(const Scene& s, int threads, const std::shared_ptr<const I
     RenderOptions o;
     o.threads = threads;
     o.maps = maps;
+    o.lost_energy = true;  // the lost-light study reads it
     return render(s, o);
 }
 
@@ -312,24 +313,7 @@ void run(const ExperimentOptions& opt) {
     }
     write_csv(path("lost_light.csv"), lost);
 
-    auto table = [&](const Csv& c) {
-        std::ostringstream t;
-        t << "|";
-        for (const auto& h : c.header) t << " " << h << " |";
-        t << "\n|";
-        for (size_t k = 0; k < c.header.size(); ++k) t << "---|";
-        t << "\n";
-        for (const auto& row : c.rows) {
-            t << "|";
-            for (const auto& v : row) {
-                char* end = nullptr;
-                const double x = std::strtod(v.c_str(), &end);
-                t << " " << (end && *end == '\0' && !v.empty() ? fmt(x, 4) : v) << " |";
-            }
-            t << "\n";
-        }
-        return t.str();
-    };
+    auto table = [](const Csv& c) { return c.markdown(4); };
     md << "## Study: wavelength sampling interval (" << st.width << "×" << st.height << ", error against 1 nm)\n\n"
        << table(steps) << "\n## Study: illumination-map element size (error against edge 0.0125 with 8× photons)\n\n"
        << table(elems) << "\n## Study: shortcut threshold (speed-up against error, eye pass)\n\n" << table(thr)

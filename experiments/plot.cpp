@@ -93,6 +93,26 @@ std::string Csv::text() const {
     return s;
 }
 
+std::string Csv::markdown(int significant) const {
+    std::ostringstream t;
+    t << "|";
+    for (const auto& h : header) t << " " << h << " |";
+    t << "\n|";
+    for (size_t k = 0; k < header.size(); ++k) t << "---|";
+    t << "\n";
+    for (const auto& row : rows) {
+        t << "|";
+        for (const auto& v : row) {
+            char* end = nullptr;
+            const double x = std::strtod(v.c_str(), &end);
+            const bool number = significant > 0 && !v.empty() && end && *end == '\0';
+            t << " " << (number ? fmt(x, significant) : v) << " |";
+        }
+        t << "\n";
+    }
+    return t.str();
+}
+
 void write_csv(const std::string& path, const Csv& table) {
     for (const auto& r : table.rows)
         if (r.size() != table.header.size())

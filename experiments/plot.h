@@ -23,6 +23,8 @@ struct Csv {
     std::vector<std::vector<std::string>> rows;
     void add(std::vector<std::string> row) { rows.push_back(std::move(row)); }
     std::string text() const;
+    // As a markdown table; `significant` > 0: numeric cells with that many significant digits.
+    std::string markdown(int significant = 0) const;
 };
 void write_csv(const std::string& path, const Csv& table);
 // Reads a CSV written by write_csv (tests, the reproduce index); throws on a bad file.

@@ -61,21 +61,6 @@ void map_figure(const std::string& dir, const std::string& name, const std::stri
     gnuplot_figure(dir, name, b.str(), size);
 }
 
-std::string md_table(const Csv& c) {
-    std::ostringstream t;
-    t << "|";
-    for (const auto& h : c.header) t << " " << h << " |";
-    t << "\n|";
-    for (size_t k = 0; k < c.header.size(); ++k) t << "---|";
-    t << "\n";
-    for (const auto& row : c.rows) {
-        t << "|";
-        for (const auto& v : row) t << " " << v << " |";
-        t << "\n";
-    }
-    return t.str();
-}
-
 }  // namespace
 
 void write(const Result& r, const std::string& dir) {
@@ -128,7 +113,7 @@ void write(const Result& r, const std::string& dir) {
           "(Rs, Rp at the entry angle, T = 1 − R): reflection (Rs − Rp)/(Rs + Rp); k internal reflections "
           "(Ts²Rs^k − Tp²Rp^k)/(Ts²Rs^k + Tp²Rp^k) (k = 0: direct transmission). The camera frame's x̂ is ŝ of "
           "every interface on these paths, so S1/S0 is the signed (Is − Ip)/(Is + Ip).\n\n"
-       << md_table(errs) << "\n`max_dop_error`: max |DoP − |closed form||; `max_signed_error`: max |S1/S0 − closed "
+       << errs.markdown() << "\n`max_dop_error`: max |DoP − |closed form||; `max_signed_error`: max |S1/S0 − closed "
           "form|; `max_off_plane`: max √(S2² + S3²)/S0. Largest DoP error over both spheres and all classes: **"
        << fmt(sp.max_dop_error, 3) << "**.\n\n";
     for (const auto& b : sp.rainbows)
@@ -349,7 +334,7 @@ void write(const Result& r, const std::string& dir) {
     times.add({"analyser_renders", fmt(an.seconds, 4)});
     times.add({"total_compute", fmt(r.seconds_total, 4)});
     write_csv(path("times.csv"), times);
-    md << "## Times\n\n" << md_table(times) << "\n"
+    md << "## Times\n\n" << times.markdown() << "\n"
        << "Diamond, exact against natural (light + eye pass): " << fmt(r.diamond.seconds_exact / r.diamond.seconds_natural, 3)
        << "×. Threads: " << r.threads << ".\n";
     write_text_atomic(path("summary.md"), md.str());

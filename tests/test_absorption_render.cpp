@@ -12,9 +12,11 @@
 #include "core/polarisation_state.h"
 #include "core/render.h"
 #include "core/scene_json.h"
+#include "tests/render_options.h"
 #include "geometry/error.h"
 
 using namespace refract;
+using refract::testing::threads;
 using nlohmann::json;
 
 namespace {
@@ -41,19 +43,6 @@ json plate_scene(double incidence_deg, double d, double alpha, const json& polar
         {"render", {{"max_depth", 80}, {"threshold", 0}, {"polarisation", polarisation}}}};
 }
 
-StokesRGB centre_stokes(const Scene& s) {
-    const SceneTracer tracer(s);
-    RenderStats st;
-    const Ray ray = s.camera.ray(1.5, 1.5);
-    return fresnel_tree_stokes(tracer, ray, camera_stokes(s, ray), st);
-}
-
-RenderOptions threads(int n) {
-    RenderOptions o;
-    o.threads = n;
-    return o;
-}
-
 }  // namespace
 
 TEST_CASE("Beer-Lambert slab: transmittance with all internal reflections, per polarisation, against the closed form",
@@ -67,7 +56,7 @@ TEST_CASE("Beer-Lambert slab: transmittance with all internal reflections, per p
     // passes the s component of the (natural) sky, at 90° the p component.
     for (const auto& [angle, R] : {std::pair{0.0, f->Rs}, std::pair{90.0, f->Rp}}) {
         const json pol = {{"model", "exact"}, {"analyser", {{"type", "linear"}, {"angle", angle}}}};
-        const StokesRGB S = centre_stokes(parse_scene(plate_scene(theta, d, alpha, pol), "slab.json"));
+        const StokesRGB S = render_pixel_stokes(parse_scene(plate_scene(theta, d, alpha, pol), "slab.json"), 1, 1);
         CHECK(S(0, 0) == Approx(0.5 * plate(R, tau)).epsilon(1e-12));
     }
     // Natural light at every node uses R = (Rs + Rp)/2 in the same series: a different,

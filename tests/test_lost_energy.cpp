@@ -38,6 +38,7 @@ std::pair<double, double> balance(const RenderResult& r) {
 RenderOptions one_thread() {
     RenderOptions o;
     o.threads = 1;
+    o.lost_energy = true;
     return o;
 }
 
@@ -75,4 +76,15 @@ TEST_CASE("White furnace, spectral: the paper's reflection/transmission limits d
     CHECK(r.stats.lost_limits > 0);
     CHECK(lost > 1e-3);
     CHECK_THAT(r.stats.lost_warning(1e-3), Catch::Contains("max_reflections"));
+}
+
+TEST_CASE("Per-pixel images past 2^28 values are refused before any work, naming the option", "[lost]") {
+    json j = furnace({{"type", "dielectric"}, {"ior", 1.5}}, {{"max_depth", 3}});
+    j["camera"]["width"] = 16384;
+    j["camera"]["height"] = 8192;
+    RenderOptions o;
+    o.lost_energy = true;
+    CHECK_THROWS_WITH(render(parse_scene(j, "big.json"), o), Catch::Contains("lost-energy image"));
+    j["render"]["polarisation"] = "exact";
+    CHECK_THROWS_WITH(render(parse_scene(j, "big.json")), Catch::Contains("/render/polarisation"));
 }

@@ -11,8 +11,10 @@
 #include "core/polarisation_state.h"
 #include "core/render.h"
 #include "core/scene_json.h"
+#include "tests/render_options.h"
 
 using namespace refract;
+using refract::testing::threads;
 using nlohmann::json;
 
 namespace {
@@ -29,25 +31,12 @@ json glass_floor(double incidence_deg, const json& polarisation) {
                 {"render", {{"max_depth", 4}, {"threshold", 0}, {"polarisation", polarisation}}}};
 }
 
-StokesRGB centre_stokes(const Scene& s) {
-    const SceneTracer tracer(s);
-    RenderStats st;
-    const Ray ray = s.camera.ray(4.5, 4.5);
-    return fresnel_tree_stokes(tracer, ray, camera_stokes(s, ray), st);
-}
-
-RenderOptions threads(int n) {
-    RenderOptions o;
-    o.threads = n;
-    return o;
-}
-
 }  // namespace
 
 TEST_CASE("Brewster's law: natural light reflected at tan(theta) = n is fully s-polarised", "[polarisation]") {
     const double theta_b = optics::brewster_angle(1.5) * 180.0 / M_PI;
     const Scene s = parse_scene(glass_floor(theta_b, "exact"), "brewster.json");
-    const StokesRGB S = centre_stokes(s);
+    const StokesRGB S = render_pixel_stokes(s, 4, 4);
     const auto f = optics::fresnel(std::cos(optics::brewster_angle(1.5)), 1.5);
     REQUIRE(f);
     CHECK(f->Rp < 1e-30);
@@ -65,16 +54,16 @@ TEST_CASE("Brewster's law: natural light reflected at tan(theta) = n is fully s-
 
 TEST_CASE("Malus's law: an analyser at angle theta passes cos^2 theta of the Brewster reflection", "[polarisation]") {
     const double theta_b = optics::brewster_angle(1.5) * 180.0 / M_PI;
-    const double I = centre_stokes(parse_scene(glass_floor(theta_b, "exact"), "b.json"))(0, 0);
+    const double I = render_pixel_stokes(parse_scene(glass_floor(theta_b, "exact"), "b.json"), 4, 4)(0, 0);
     for (double t : {0.0, 20.0, 45.0, 60.0, 90.0, 135.0}) {
         const json pol = {{"model", "exact"}, {"analyser", {{"type", "linear"}, {"angle", t}}}};
-        const StokesRGB S = centre_stokes(parse_scene(glass_floor(theta_b, pol), "malus.json"));
+        const StokesRGB S = render_pixel_stokes(parse_scene(glass_floor(theta_b, pol), "malus.json"), 4, 4);
         const double c = std::cos(t * M_PI / 180.0);
         CHECK(S(0, 1) == Approx(I * c * c).margin(1e-14));
     }
     // A circular analyser passes half of any linear state.
     const json circ = {{"model", "exact"}, {"analyser", {{"type", "circular"}, {"handedness", "right"}}}};
-    CHECK(centre_stokes(parse_scene(glass_floor(theta_b, circ), "c.json"))(0, 2) == Approx(0.5 * I).epsilon(1e-12));
+    CHECK(render_pixel_stokes(parse_scene(glass_floor(theta_b, circ), "c.json"), 4, 4)(0, 2) == Approx(0.5 * I).epsilon(1e-12));
 }
 
 TEST_CASE("Exact polarisation equals natural light where light meets a single interface", "[polarisation]") {

@@ -18,7 +18,8 @@ Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng
             // light on a diffuse surface), as in the tree integrators; nothing scatters on.
             ++stats.depth_limited;
             if (!random_scatter) radiance += throughput.cwiseProduct(tracer.local_light(*hit, stats));
-            if (random_scatter || tracer.interact(*hit, ray, stats).branches > 0) stats.lost_depth += throughput.mean();
+            // The path would have gone on from anything but a leaf (diffuse, emissive).
+            if (random_scatter || !(m.diffuse_surface() || m.is<material::Emissive>())) stats.lost_depth += throughput.mean();
             return radiance;
         }
         std::optional<Scatter> next;
