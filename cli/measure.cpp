@@ -1,4 +1,5 @@
-// refract measure IMAGE (--region X0 Y0 X1 Y1 | --mask MASK | --line X0 Y0 X1 Y1 | --radial CX CY R) [-o CSV]
+// refract measure IMAGE (--region X0 Y0 X1 Y1 | --mask MASK | --line X0 Y0 X1 Y1 | --radial CX CY R |
+//                        --angle-histogram [--axis X Y Z]) [-o CSV]
 // Image measurements as CSV (validation/measure.h), on standard output or into a file.
 #include <iomanip>
 #include <iostream>
@@ -17,7 +18,8 @@ namespace {
 struct MeasureArgs {
     std::string image, mask, output;
     std::vector<int> region, line;
-    std::vector<double> radial;
+    std::vector<double> radial, axis;
+    bool angles = false;
     int bins = 32;
 };
 
@@ -75,13 +77,39 @@ refract::cli::Registrar reg{55, [](CLI::App& app) {
     auto* mask = sub->add_option("--mask", a->mask, "Statistics over the pixels where this image's first channel > 0.5");
     auto* line = sub->add_option("--line", a->line, "Profile along the pixels from X0 Y0 to X1 Y1")->expected(4);
     auto* rad = sub->add_option("--radial", a->radial, "Radial profile about CX CY out to radius R (pixels)")->expected(3);
-    sub->add_option("--bins", a->bins, "Radial profile: number of rings (32)")->check(CLI::Range(1, 100000));
+    auto* ang = sub->add_flag("--angle-histogram", a->angles,
+                              "A far-field sphere map (refract farfield's far_field.exr) binned by angle to --axis: "
+                              "power and intensity of every channel");
+    sub->add_option("--axis", a->axis, "Angle histogram: the axis X Y Z (default: the map's own)")->expected(3);
+    sub->add_option("--bins", a->bins, "Radial profile: rings (32); angle histogram: bins over 0-180 degrees (32)")
+        ->check(CLI::Range(1, 1 << 20));
     sub->add_option("-o,--output", a->output, "Write the CSV here instead of standard output");
     line->excludes(reg)->excludes(mask)->excludes(rad);
     rad->excludes(reg)->excludes(mask);
+    ang->excludes(reg)->excludes(mask)->excludes(line)->excludes(rad);
     sub->callback([a] {
         using namespace refract;
         namespace v = refract::validation;
+        if (a->angles) {
+            const Channels map = read_channels(a->image);
+            std::optional<Vec3> axis;
+            if (!a->axis.empty()) axis = Vec3(a->axis[0], a->axis[1], a->axis[2]);
+            std::ostringstream csv;
+            csv << "theta0_deg,theta1_deg,solid_angle_sr,pixels";
+            for (const auto& n : map.names) csv << ",power_" << n;
+            for (const auto& n : map.names) csv << ",intensity_" << n;
+            csv << "\n";
+            for (const auto& b : v::angle_histogram(map, a->image, a->bins, axis)) {
+                csv << csv_number(b.theta0_deg) << "," << csv_number(b.theta1_deg) << "," << csv_number(b.solid_angle) << ","
+                    << b.pixels;
+                for (double p : b.power) csv << "," << csv_number(p);
+                for (double i : b.intensity) csv << "," << csv_number(i);
+                csv << "\n";
+            }
+            if (a->output.empty()) std::cout << csv.str();
+            else validation::write_text_file(a->output, csv.str());
+            return;
+        }
         const Image img = read_image(a->image);
         std::string csv;
         try {

@@ -128,4 +128,33 @@ Image read_image(const std::string& path) {
     return img;
 }
 
+const std::string* Channels::attribute(const std::string& name) const {
+    for (const auto& [k, v] : attributes)
+        if (k == name) return &v;
+    return nullptr;
+}
+
+int Channels::channel(const std::string& name) const {
+    for (size_t k = 0; k < names.size(); ++k)
+        if (names[k] == name) return static_cast<int>(k);
+    return -1;
+}
+
+Channels read_channels(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    Channels c;
+    c.width = spec.width;
+    c.height = spec.height;
+    c.names = spec.channelnames;
+    std::vector<float> buf(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
+        throw InputError(path + ": cannot read image: " + in->geterror());
+    c.data.assign(buf.begin(), buf.end());
+    for (const auto& p : spec.extra_attribs)
+        if (p.type() == OIIO::TypeDesc::STRING) c.attributes.emplace_back(p.name().string(), p.get_string());
+    return c;
+}
+
 }  // namespace refract

@@ -42,6 +42,18 @@ void write_channels(const std::string& path, int width, int height, const std::v
                     const std::vector<double>& data,
                     const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
+// Every channel of an image with its names and its header's string attributes (data
+// interleaved, row-major). Throws InputError naming the path.
+struct Channels {
+    int width = 0, height = 0;
+    std::vector<std::string> names;
+    std::vector<double> data;
+    std::vector<std::pair<std::string, std::string>> attributes;
+    const std::string* attribute(const std::string& name) const;
+    int channel(const std::string& name) const;  // −1 when absent
+};
+Channels read_channels(const std::string& path);
+
 // Reads any image OpenImageIO can read, as stored (integer formats scaled to [0, 1],
 // no transfer function applied: POV-Ray's File_Gamma=1.0 PNGs are linear as read).
 // Throws InputError naming the path.

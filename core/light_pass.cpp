@@ -8,7 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "core/random.h"
+#include "core/emitters.h"
 #include "core/ray_tree.h"
 
 namespace refract {
@@ -83,20 +83,6 @@ struct PhotonEnds {
     }
 };
 
-// A light's polarisation as a photon leaving along `dir` carries it (S0 = 1).
-LightStokes emitted(const PolarisationState& p, const Vec3& dir) {
-    Vec3 ref = p.reference - p.reference.dot(dir) * dir;
-    if (ref.norm() < 1e-9) ref = Vec3(1, 0, 0) - dir.x() * dir;  // the beam runs along the reference
-    LightStokes s;
-    s.x = ref.normalized();
-    switch (p.kind) {
-        case PolarisationState::Kind::Unpolarised: s.S = polar::unpolarised(1.0); break;
-        case PolarisationState::Kind::Linear: s.S = polar::linear(1.0, p.angle_deg * M_PI / 180.0); break;
-        case PolarisationState::Kind::Circular: s.S = polar::circular(1.0, p.handedness); break;
-    }
-    return s;
-}
-
 // The illumination map each shape gets: planes (a square under the transparent objects)
 // and meshes; none for spheres and polyhedra.
 std::unique_ptr<IlluminationMap> map_for(const Plane& p, const Vec3& centre, double half, double element) {
@@ -115,11 +101,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     const LightPassSettings& lp = scene.settings.light_pass;
     const RenderSettings& rs = scene.settings;
     auto maps = std::make_shared<IlluminationMaps>();
-    // Targets: the transparent objects' bounding spheres.
-    std::vector<BoundingSphere> targets;
-    for (const Object& o : scene.objects)
-        if (scene.materials[o.material].is<material::Dielectric>())
-            if (auto b = bounding_sphere(o.shape)) targets.push_back(*b);
+    const std::vector<BoundingSphere> targets = transparent_targets(scene);
     maps->by_object.resize(scene.objects.size());
     if (targets.empty() || scene.lights.empty()) return maps;
     Vec3 centre(0, 0, 0);
@@ -141,45 +123,10 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     for (auto& v : acc.sums)
         for (auto& a : v) a.store(0, std::memory_order_relaxed);
 
-    // Emitters: (light, target) pairs, photons split evenly over the targets.
-    // A point light shoots into the cone around a target; a directional light shoots
-    // parallel photons through the disk of the target's radius across its direction.
-    struct Emitter {
-        Vec3 origin, axis, power;  // power: flux of one photon at the reference distance
-        double cos_max, dref;      // dref 0: directional
-        std::uint64_t photons, stream;
-        size_t light;
-        double radius = 0;         // directional: the disk's radius
-    };
-    std::vector<Emitter> emitters;
+    const std::vector<Emitter> emitters = make_emitters(scene, targets, centre, lp.photons);
     double max_power = 0;
-    for (size_t l = 0; l < scene.lights.size(); ++l) {
-        const Light& L = scene.lights[l];
-        if (L.kind == Light::Kind::Directional) {
-            for (size_t t = 0; t < targets.size(); ++t) {
-                const double R = targets[t].radius;
-                const std::uint64_t n = std::max<std::uint64_t>(1, lp.photons / targets.size());
-                const Vec3 power = L.color * (M_PI * R * R / static_cast<double>(n));  // irradiance × disk area
-                const Vec3 origin = targets[t].centre - (R * 1.01 + 1e-6) * L.direction;
-                emitters.push_back({origin, L.direction, power, 1.0, 0.0, n, l * targets.size() + t, l, R});
-                max_power = std::fmax(max_power, power.cwiseAbs().maxCoeff() * static_cast<double>(n));
-            }
-            continue;
-        }
-        const double dref = (centre - L.position).norm();
-        for (size_t t = 0; t < targets.size(); ++t) {
-            const Vec3 to = targets[t].centre - L.position;
-            const double d = to.norm();
-            if (d <= targets[t].radius) continue;  // light inside the bounds
-            const double sin_max = targets[t].radius / d;
-            const double cos_max = std::sqrt(1.0 - sin_max * sin_max);
-            const double omega = 2.0 * M_PI * (1.0 - cos_max);
-            const std::uint64_t n = std::max<std::uint64_t>(1, lp.photons / targets.size());
-            const Vec3 power = L.color * (dref * dref * omega / static_cast<double>(n));
-            emitters.push_back({L.position, to / d, power, cos_max, dref, n, l * targets.size() + t, l, 0.0});
-            max_power = std::fmax(max_power, power.cwiseAbs().maxCoeff() * static_cast<double>(n));
-        }
-    }
+    for (const Emitter& em : emitters)
+        max_power = std::fmax(max_power, em.power.cwiseAbs().maxCoeff() * static_cast<double>(em.photons));
     // Fixed point: 2^40 units for the largest emitter's total power.
     acc.scale = max_power > 0 ? kFixedScale / max_power : 1.0;
     std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0};
@@ -188,29 +135,17 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     const bool exact = rs.polarisation == PolarisationModel::Exact;
 
     auto trace_photon = [&](const Emitter& em, std::uint64_t p, RenderStats& st, std::uint64_t& dep) {
-        Rng rng(lp.seed, em.stream, p);
-        const double xi = rng.uniform();
-        const double phi = 2.0 * M_PI * rng.uniform();
-        const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-        const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
-        Vec3 origin = em.origin, dir = em.axis;
-        if (em.dref > 0) {  // uniform in the cone's solid angle
-            const double cos_t = 1.0 - xi * (1.0 - em.cos_max);
-            const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
-            dir = (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized();
-        } else {  // uniform over the disk's area
-            origin += em.radius * std::sqrt(xi) * (std::cos(phi) * u + std::sin(phi) * v);
-        }
+        const auto [ray, power] = sample_photon(em, lp.seed, p);
         if (exact) {
             RayTreeWalkerT<LightStokes> walker(tracer, limits, st);
             PhotonEnds<LightStokes> ends{scene, ctx, *maps, acc, em.dref, st, dep};
-            RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{Ray{origin, dir}, em.power}};
-            list.front().pol = emitted(scene.lights[em.light].polarisation, dir);
+            RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{ray, power}};
+            list.front().pol = emitted(scene.lights[em.light].polarisation, ray.dir);
             walker.walk(list, ends);
         } else {
             RayTreeWalker walker(tracer, limits, st);
             PhotonEnds<NaturalLight> ends{scene, ctx, *maps, acc, em.dref, st, dep};
-            RayTreeWalker::List list{TreeEntry{Ray{origin, dir}, em.power}};
+            RayTreeWalker::List list{TreeEntry{ray, power}};
             walker.walk(list, ends);
         }
     };

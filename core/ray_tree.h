@@ -19,7 +19,7 @@
 // for natural light, the camera-side Mueller matrix for an eye pass, the photon's Stokes
 // vector for a light pass; the walker updates it with each branch's Mueller matrix.
 #include <cstdint>
-#include <deque>
+#include <initializer_list>
 #include <vector>
 
 #include "core/polarisation_state.h"
@@ -61,11 +61,38 @@ inline TreeLimits tree_limits(const RenderSettings& s) {
     return l;
 }
 
+// The FIFO list: entries in a vector read from a moving head, so that a walk (and the
+// next one, when the list is reused) allocates only while the list grows; the consumed
+// front is reclaimed once it is half of the storage.
+template <class T>
+class FifoList {
+public:
+    FifoList() = default;
+    FifoList(std::initializer_list<T> init) : items_(init) {}
+    bool empty() const { return head_ == items_.size(); }
+    size_t size() const { return items_.size() - head_; }
+    T& front() { return items_[head_]; }
+    void push_back(const T& t) { items_.push_back(t); }
+    void pop_front() {
+        if (++head_ == items_.size()) {
+            items_.clear();
+            head_ = 0;
+        } else if (head_ >= 256 && 2 * head_ >= items_.size()) {
+            items_.erase(items_.begin(), items_.begin() + static_cast<std::ptrdiff_t>(head_));
+            head_ = 0;
+        }
+    }
+
+private:
+    std::vector<T> items_;
+    size_t head_ = 0;
+};
+
 template <class P>
 class RayTreeWalkerT {
 public:
     using Entry = TreeEntryT<P>;
-    using List = std::deque<Entry>;
+    using List = FifoList<Entry>;
 
     RayTreeWalkerT(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
         : tracer_(tracer), limits_(limits), stats_(stats) {}

@@ -2,6 +2,7 @@
 // The in-memory scene: what a scene file (docs/scene-format.md) describes.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -36,42 +37,74 @@ struct PolarisationState {
     int handedness = 1;  // Circular: sign of S3 (+1: left-circular in Born & Wolf's naming)
 };
 
-// A point light, or a directional one (a sun of no angular size): parallel light
-// travelling along `direction`, of irradiance `color` on a surface facing it. Shadow rays
-// of a directional light run to the plane across it at kDirectionalDistance from the
-// origin (where the POV-Ray export puts its `parallel` light).
+// A point light; a directional one (a sun: parallel light travelling along `direction`,
+// of irradiance `color` on a surface facing it, seen as a disk of `angular_diameter_deg`);
+// or a collimated beam (parallel light along `direction` inside the cylinder of `radius`
+// about the axis through `position`, starting on the disk across it there; `color` its
+// irradiance). Shadow rays of a directional light run to the plane across it at
+// kDirectionalDistance from the origin (where the POV-Ray export puts its `parallel`
+// light); a beam's to its starting disk. The eye passes see a sun as its centre
+// direction; its angular size spreads the light pass's photons (docs/scene-format.md).
 struct Light {
-    enum class Kind { Point, Directional };
-    Vec3 position{0, 10, 0};  // point light
+    enum class Kind { Point, Directional, Beam };
+    Vec3 position{0, 10, 0};  // point light; a beam's starting centre
     Vec3 color{1, 1, 1};      // no distance falloff (POV-Ray default)
     PolarisationState polarisation;  // what the light pass's photons start with
     Kind kind = Kind::Point;
-    Vec3 direction{0, -1, 0};  // directional: unit, the way the light travels
+    Vec3 direction{0, -1, 0};  // directional and beam: unit, the way the light travels
+    double angular_diameter_deg = 0;  // directional: the sun's disk (0: a point at infinity)
+    double radius = 0;                // beam: the cylinder's radius
+    // The light's relative spectral power (spectral passes); when a light gives one, the
+    // scene's render.spectral.light is that spectrum (docs/scene-format.md).
+    std::optional<spectrum::LightSpectrum> spectrum;
 
     static constexpr double kDirectionalDistance = 1e5;
     // Directional: the point standing for the light (the export's light_source location).
     Vec3 directional_position() const { return -kDirectionalDistance * direction; }
+    bool parallel() const { return kind != Kind::Point; }
 
     // Seen from point p: the unit direction towards the light and where a shadow ray from
     // p ends (a point light's position; for a directional light the plane across it
     // through directional_position(), as POV-Ray's `parallel`: trace.cpp
-    // ComputeOneWhiteLightRay).
+    // ComputeOneWhiteLightRay; for a beam its starting disk). None when p lies outside a
+    // beam.
     struct Toward {
         Vec3 dir, end;
     };
-    Toward toward(const Vec3& p) const {
-        if (kind == Kind::Directional)
-            return {-direction, p - (directional_position() - p).dot(-direction) * direction};
-        return {(position - p).normalized(), position};
+    std::optional<Toward> toward(const Vec3& p) const {
+        switch (kind) {
+            case Kind::Directional:
+                return Toward{-direction, p - (directional_position() - p).dot(-direction) * direction};
+            case Kind::Beam: {
+                const double along = (p - position).dot(direction);
+                const Vec3 foot = position + along * direction;
+                if (along <= 0 || (p - foot).norm() > radius) return std::nullopt;
+                return Toward{-direction, p - along * direction};
+            }
+            case Kind::Point: break;
+        }
+        return Toward{(position - p).normalized(), position};
     }
 };
 
+struct EnvironmentMap;  // core/environment_map.h
+
+// What a ray that leaves the scene sees. Environment: an environment light, of constant
+// radiance `color` (no map) or an equirectangular map (POV-Ray's spherical image map,
+// core/environment_map.h), times `scale`, the map turned by `rotation_deg` about +y.
 struct Background {
-    enum class Kind { Solid, Gradient };  // Gradient: RTIOW sky, lerp on 0.5(dir.y + 1)
+    enum class Kind { Solid, Gradient, Environment };  // Gradient: RTIOW sky, lerp on 0.5(dir.y + 1)
     Kind kind = Kind::Solid;
-    Vec3 color{0, 0, 0};     // Solid
+    Vec3 color{0, 0, 0};     // Solid; Environment without a map
     Vec3 bottom{1, 1, 1};    // Gradient at dir.y = −1
     Vec3 top{0.5, 0.7, 1.0}; // Gradient at dir.y = +1
+    std::shared_ptr<const EnvironmentMap> map;  // Environment: read once, at scene load
+    double scale = 1.0;         // Environment: multiplies the colour or the map
+    double rotation_deg = 0.0;  // Environment: the map turned about +y, +z towards +x
+
+    // The radiance arriving from direction `dir` (any length but zero): the one lookup of
+    // every ray that leaves the scene (SceneTracer::background), usable on its own.
+    Vec3 radiance(const Vec3& dir) const;
 };
 
 // Spectral eye pass (Ohtsuka & Kawai 1998): render.spectral in the scene file.

@@ -1,10 +1,12 @@
 #include "core/scene_json.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "core/environment_map.h"
 #include "core/json_reader.h"
 #include "geometry/gem/brilliant.h"
 #include "geometry/error.h"
@@ -43,6 +45,37 @@ Camera parse_camera(const JsonReader& r) {
     return c;
 }
 
+// The map of an environment light, read once: the path is relative to the scene file's
+// directory; any problem with the file names the field.
+std::shared_ptr<const EnvironmentMap> read_environment_map(const JsonReader& r, const std::string& file) {
+    const std::string name = r.string("map");
+    if (name.empty()) r.fail_at("map", "must name an image file");
+    const std::filesystem::path path = std::filesystem::path(file).parent_path() / name;
+    try {
+        return std::make_shared<const EnvironmentMap>(load_environment_map(path.lexically_normal().string()));
+    } catch (const InputError& e) {
+        r.fail_at("map", e.what());
+    }
+}
+
+// An environment light: a constant `color` or a `map`, times `scale`, turned by `rotation_deg`.
+Background parse_environment(const JsonReader& r, const std::string& file) {
+    r.only({"type", "color", "map", "scale", "rotation_deg"});
+    Background b;
+    b.kind = Background::Kind::Environment;
+    if (r.has("color") == r.has("map")) r.fail("an environment needs either \"color\" or \"map\"");
+    if (r.has("color")) {
+        b.color = r.vec3("color");
+        for (int k = 0; k < 3; ++k)
+            if (b.color[k] < 0) r.fail_at("color", "components must be >= 0");
+    } else {
+        b.map = read_environment_map(r, file);
+    }
+    b.scale = r.positive("scale", b.scale);
+    b.rotation_deg = r.number("rotation_deg", b.rotation_deg);
+    return b;
+}
+
 Background parse_background(const json& v, const std::string& file) {
     Background b;
     if (v.is_array()) {
@@ -50,8 +83,9 @@ Background parse_background(const json& v, const std::string& file) {
         return b;
     }
     JsonReader r(v, file, "/background");
-    r.only({"type", "color", "top", "bottom"});
     const std::string type = r.string("type", "solid");
+    if (type == "environment") return parse_environment(r, file);
+    r.only({"type", "color", "top", "bottom"});
     if (type == "solid") {
         b.color = r.vec3("color", b.color);
     } else if (type == "gradient") {
@@ -59,7 +93,7 @@ Background parse_background(const json& v, const std::string& file) {
         b.top = r.vec3("top", b.top);
         b.bottom = r.vec3("bottom", b.bottom);
     } else {
-        r.fail_at("type", "unknown background type '" + type + "' (solid, gradient)");
+        r.fail_at("type", "unknown background type '" + type + "' (solid, gradient, environment)");
     }
     return b;
 }
@@ -390,6 +424,32 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
 
 }  // namespace
 
+// A light's own spectrum becomes the scene's (refract has one light spectrum per scene):
+// lights giving different spectra, or one differing from render.spectral.light, are refused.
+void apply_light_spectra(Scene& s, const JsonReader& root) {
+    const std::string file = s.source;
+    std::optional<size_t> first;
+    for (size_t k = 0; k < s.lights.size(); ++k) {
+        if (!s.lights[k].spectrum) continue;
+        if (!first) {
+            first = k;
+            continue;
+        }
+        if (s.lights[k].spectrum->name() != s.lights[*first].spectrum->name())
+            throw InputError(file + ": /lights/" + std::to_string(k) + "/spectrum: " + s.lights[k].spectrum->name() +
+                             " differs from /lights/" + std::to_string(*first) + "/spectrum (" +
+                             s.lights[*first].spectrum->name() + "): a scene has one light spectrum");
+    }
+    if (!first) return;
+    const spectrum::LightSpectrum& L = *s.lights[*first].spectrum;
+    const auto& j = root.json();
+    if (j.contains("render") && j["render"].contains("spectral") && j["render"]["spectral"].is_object() &&
+        j["render"]["spectral"].contains("light") && s.settings.spectral.light.name() != L.name())
+        throw InputError(file + ": /render/spectral/light: " + s.settings.spectral.light.name() + " differs from /lights/" +
+                         std::to_string(*first) + "/spectrum (" + L.name() + "): a scene has one light spectrum");
+    s.settings.spectral.light = L;
+}
+
 Scene parse_scene(const json& j, const std::string& file) {
     JsonReader root(j, file, "");
     if (!j.is_object()) root.fail("a scene must be a JSON object");
@@ -426,24 +486,39 @@ Scene parse_scene(const json& j, const std::string& file) {
             if (!ls[k].is_object()) l.fail("must be an object");
             const std::string type = l.string("type", "point");
             Light light;
-            if (type == "point") {
-                l.only({"type", "position", "color", "polarisation"});
-                light.position = l.vec3("position");
-            } else if (type == "directional") {
-                l.only({"type", "direction", "color", "polarisation"});
-                light.kind = Light::Kind::Directional;
+            const auto direction = [&] {
                 const Vec3 d = l.vec3("direction");
                 if (!(d.norm() > 0) || !d.allFinite()) l.fail_at("direction", "must be a finite, non-zero vector");
-                light.direction = d.normalized();
+                return Vec3(d.normalized());
+            };
+            if (type == "point") {
+                l.only({"type", "position", "color", "polarisation", "spectrum"});
+                light.position = l.vec3("position");
+            } else if (type == "directional") {
+                l.only({"type", "direction", "color", "polarisation", "spectrum", "angular_diameter_deg"});
+                light.kind = Light::Kind::Directional;
+                light.direction = direction();
+                light.angular_diameter_deg = l.number("angular_diameter_deg", 0.0);
+                if (!(light.angular_diameter_deg >= 0 && light.angular_diameter_deg < 90))
+                    l.fail_at("angular_diameter_deg", "must be in [0, 90) degrees");
+            } else if (type == "beam") {
+                l.only({"type", "position", "direction", "radius", "color", "polarisation", "spectrum"});
+                light.kind = Light::Kind::Beam;
+                light.position = l.vec3("position");
+                light.direction = direction();
+                light.radius = l.number("radius");
+                if (!(light.radius > 0)) l.fail_at("radius", "must be positive");
             } else {
-                l.fail_at("type", "unknown light type '" + type + "' (point, directional)");
+                l.fail_at("type", "unknown light type '" + type + "' (point, directional, beam)");
             }
             light.color = l.vec3("color", Vec3(1, 1, 1));
             if (l.has("polarisation")) light.polarisation = parse_polarisation_state(l.child("polarisation"), true);
+            if (l.has("spectrum")) light.spectrum = spectrum::parse_light_spectrum(l.raw("spectrum"), file + ": " + l.path_of("spectrum"));
             s.lights.push_back(light);
         }
     }
     if (root.has("render")) s.settings = parse_settings(root.child("render"), file);
+    apply_light_spectra(s, root);
     for (const Material& m : s.materials)
         if (m.dielectric() && m.dielectric()->dispersion) s.settings.spectral.enabled = true;
     if (s.settings.light_pass.enabled) s.settings.spectral.enabled = true;  // the maps are read by the spectral pass

@@ -42,12 +42,7 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
     return best;
 }
 
-Vec3 SceneTracer::background(const Vec3& dir) const {
-    const Background& b = scene_.background;
-    if (b.kind == Background::Kind::Solid) return b.color;
-    const double a = 0.5 * (dir.normalized().y() + 1.0);  // RTIOW ray_color sky
-    return (1.0 - a) * b.bottom + a * b.top;
-}
+Vec3 SceneTracer::background(const Vec3& dir) const { return scene_.background.radiance(dir); }
 
 Vec3 SceneTracer::pigment(const Pigment& m, const Vec3& p) const {
     if (!m.checker) return m.color;
@@ -129,10 +124,11 @@ Vec3 SceneTracer::shade_diffuse(const SurfaceHit& h, const Pigment& pigment_, do
     const Vec3 pig = pigment(pigment_, h.hit.point);
     Vec3 c = ambient * pig;
     for (const Light& l : scene_.lights) {
-        const Light::Toward to = l.toward(h.hit.point);
-        const double cos_l = h.normal.dot(to.dir);
+        const auto to = l.toward(h.hit.point);
+        if (!to) continue;
+        const double cos_l = h.normal.dot(to->dir);
         if (cos_l <= 0) continue;
-        const Vec3 tr = light_transmittance(h.hit.point, to.end, stats);
+        const Vec3 tr = light_transmittance(h.hit.point, to->end, stats);
         c += diffuse * cos_l * pig.cwiseProduct(l.color).cwiseProduct(tr);
     }
     return c;

@@ -23,6 +23,10 @@ const std::vector<Experiment>& all() {
         {"polarisation",
          "Exact polarisation against natural light: a sphere's DoP per path vs closed forms, the 1998 diamond and a glass sphere in both models, the diamond through an analyser",
          polarisation::run},
+        {"optics-bench",
+         "Classic optics with the far-field detector against closed forms: a water drop's scattering per path class, "
+         "rainbow angles against wavelength, a prism's deviation, a slab's transmittance (s and p)",
+         optics_bench::run},
     };
     return list;
 }

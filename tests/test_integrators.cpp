@@ -43,7 +43,9 @@ Scene tree_scene() {
     s.objects.push_back({"water", Sphere{Vec3(1.2, -0.3, 0.8), 0.7}, 1});
     s.objects.push_back({"floor", Plane{Vec3(0, 1, 0), -1.0}, 2});
     s.objects.push_back({"mirror", Sphere{Vec3(-1.8, -0.2, 1.5), 0.8}, 3});
-    s.lights.push_back({Vec3(4, 8, -5), Vec3(1, 1, 1), {}});
+    Light light;
+    light.position = Vec3(4, 8, -5);
+    s.lights.push_back(light);
     s.settings.max_depth = 8;
     s.settings.threshold = 0;
     return s;

@@ -2,6 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include "core/far_field.h"
+
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -63,6 +69,59 @@ std::vector<RadialBin> radial_profile(const Image& img, double cx, double cy, in
         }
     for (auto& b : out)
         if (b.pixels > 0) b.mean /= static_cast<double>(b.pixels);
+    return out;
+}
+
+namespace {
+
+Vec3 parse_vec3(const Channels& map, const std::string& name, const std::string& key) {
+    const std::string* v = map.attribute(key);
+    if (!v) throw InputError(name + ": not a far-field sphere map (no " + key + " in its header)");
+    std::istringstream in(*v);
+    double x, y, z;
+    if (!(in >> x >> y >> z)) throw InputError(name + ": " + key + " '" + *v + "' is not three numbers");
+    return {x, y, z};
+}
+
+}  // namespace
+
+std::vector<AngleBin> angle_histogram(const Channels& map, const std::string& name, int bins,
+                                      const std::optional<Vec3>& axis) {
+    const std::string* kind = map.attribute("refract:far_field");
+    if (!kind || *kind != "sphere")
+        throw InputError(name + ": not a far-field sphere map (refract farfield --binning sphere writes one)");
+    if (bins < 1 || bins > (1 << 20)) throw InputError(name + ": --bins must be in [1, 2^20]");
+    FarFieldSettings s;
+    s.binning = FarFieldSettings::Binning::Sphere;
+    s.axis = parse_vec3(map, name, "refract:far_field_axis");
+    s.reference = parse_vec3(map, name, "refract:far_field_reference");
+    s.azimuth_bins = map.width;
+    s.polar_bins = map.height;
+    Vec3 a = axis.value_or(s.axis);
+    if (!a.allFinite() || !(a.norm() > 0)) throw InputError(name + ": the axis must be a finite, non-zero vector");
+    a.normalize();
+    const size_t nc = map.names.size();
+    const double pixel_omega = 4.0 * M_PI / (static_cast<double>(map.width) * map.height);
+    std::vector<AngleBin> out(static_cast<size_t>(bins));
+    for (int b = 0; b < bins; ++b) {
+        AngleBin& bin = out[static_cast<size_t>(b)];
+        bin.theta0_deg = 180.0 * b / bins;
+        bin.theta1_deg = 180.0 * (b + 1) / bins;
+        bin.solid_angle = 2.0 * M_PI * (std::cos(bin.theta0_deg * M_PI / 180) - std::cos(bin.theta1_deg * M_PI / 180));
+        bin.power.assign(nc, 0.0);
+    }
+    for (int p = 0; p < map.width * map.height; ++p) {
+        const Vec3 d = bin_direction(s, p);
+        const double theta = std::acos(std::clamp(d.dot(a), -1.0, 1.0));
+        const int b = std::min(bins - 1, static_cast<int>(theta / M_PI * bins));
+        AngleBin& bin = out[static_cast<size_t>(b)];
+        ++bin.pixels;
+        for (size_t c = 0; c < nc; ++c) bin.power[c] += map.data[static_cast<size_t>(p) * nc + c] * pixel_omega;
+    }
+    for (AngleBin& bin : out) {
+        bin.intensity.resize(nc);
+        for (size_t c = 0; c < nc; ++c) bin.intensity[c] = bin.power[c] / bin.solid_angle;
+    }
     return out;
 }
 

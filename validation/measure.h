@@ -3,6 +3,7 @@
 // statistics over a rectangle or a mask, the values along a line of pixels, and a radial
 // profile about a point. Pure functions returning structures; writing CSV is the caller's.
 #include <array>
+#include <string>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -39,5 +40,19 @@ struct RadialBin {
 // Mean per ring of width max_radius / bins about (cx, cy) in pixel coordinates (x to the
 // right, y down, the top-left corner at 0).
 std::vector<RadialBin> radial_profile(const Image& img, double cx, double cy, int bins, double max_radius);
+
+// A far-field detector's sphere map (refract farfield: far_field.exr, equal solid angle
+// per pixel, intensities per steradian) re-binned by the angle θ of each pixel's centre
+// direction to `axis` (default: the map's own axis): per bin of width 180°/bins, the
+// pixels, the power (Σ intensity × pixel solid angle) and the mean intensity
+// (power / the bin's solid angle) of every channel. InputError naming the image when it
+// is not a sphere far-field map.
+struct AngleBin {
+    double theta0_deg = 0, theta1_deg = 0, solid_angle = 0;
+    long long pixels = 0;
+    std::vector<double> power, intensity;  // per channel of the map
+};
+std::vector<AngleBin> angle_histogram(const Channels& map, const std::string& name, int bins,
+                                      const std::optional<Vec3>& axis = std::nullopt);
 
 }  // namespace refract::validation

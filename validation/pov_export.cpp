@@ -1,8 +1,10 @@
 #include "validation/pov_export.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
@@ -11,6 +13,8 @@
 
 #include <Eigen/Dense>
 
+#include "core/environment_map.h"
+#include "core/image.h"
 #include "geometry/error.h"
 #include "validation/files.h"
 
@@ -72,6 +76,9 @@ void check_settings(const Scene& s, const Refuser& refuse, bool photons) {
             refuse(std::string("/render/spectral/") + field,
                    std::string(field) + " " + std::to_string(*limit) + " below max_depth " + std::to_string(r.max_depth) +
                        " (the 1998 paper's separate limit; POV-Ray has max_trace_level only)");
+    for (size_t k = 0; k < s.lights.size(); ++k)
+        if (s.lights[k].kind == Light::Kind::Beam)
+            refuse("/lights/" + std::to_string(k), "a collimated beam (a parallel light bounded by a cylinder) has no POV-Ray counterpart");
     if (r.max_depth + 1 > 256)
         refuse("/render/max_depth", "max_depth " + std::to_string(r.max_depth) +
                                         " needs max_trace_level " + std::to_string(r.max_depth + 1) + " > 256");
@@ -377,8 +384,44 @@ std::string camera(const Camera& c) {
     return o.str();
 }
 
-std::string background(const Background& b) {
+// Whether v is a half-precision float exactly (POV-Ray reads OpenEXR files through
+// OpenEXR's RgbaInputFile, in half precision: base/image/openexr.cpp).
+bool exact_in_half(double v) {
+    if (v == 0) return true;
+    if (!(std::abs(v) <= 65504.0)) return false;  // the largest half
+    int e = 0;
+    std::frexp(v, &e);  // |v| = m·2^e, m ∈ [0.5, 1)
+    const int step = std::max(e - 1, -14) - 10;  // log2 of the spacing of halves at v (subnormals below 2^−14)
+    const double k = std::ldexp(v, -step);
+    return k == std::floor(k);
+}
+
+void check_environment_map(const EnvironmentMap& m, const Refuser& refuse) {
+    for (int j = 0; j < m.height; ++j)
+        for (int i = 0; i < m.width; ++i)
+            for (int c = 0; c < 3; ++c)
+                if (!exact_in_half(m.pixel(i, j)[c]))
+                    refuse("/background/map", "pixel (" + std::to_string(i) + ", " + std::to_string(j) + ") of '" +
+                                                  comment_text(m.path) + "' holds " + pov_number(m.pixel(i, j)[c]) +
+                                                  ", not a half-precision value (POV-Ray reads OpenEXR maps in half precision)");
+}
+
+// An environment light: a constant one is POV-Ray's background colour; a map a
+// sky_sphere with the map as a spherical image map (imageutil.cpp spherical_image_map,
+// bilinear `interpolate 2`), the scale as its emission, the rotation as `rotate y*deg`
+// (POV-Ray looks the sky up at the inverse transform of the ray direction, as
+// Background::radiance does).
+std::string environment(const Background& b, const std::string& map_file) {
+    if (!b.map) return "background { rgb " + vec(b.scale * b.color) + " }\n";
+    std::string o = "sky_sphere {\n  pigment { image_map { exr \"" + map_file + "\" map_type 1 interpolate 2 } }\n";
+    if (b.scale != 1) o += "  emission rgb " + vec(Vec3::Constant(b.scale)) + "\n";
+    if (b.rotation_deg != 0) o += "  rotate y*" + pov_number(b.rotation_deg) + "\n";
+    return o + "}\n";
+}
+
+std::string background(const Background& b, const std::string& map_file) {
     if (b.kind == Background::Kind::Solid) return "background { rgb " + vec(b.color) + " }\n";
+    if (b.kind == Background::Kind::Environment) return environment(b, map_file);
     // RTIOW sky: lerp(bottom, top, (dir.y + 1)/2). The gradient is evaluated on the unit
     // ray direction; scale 2 and translate −y map dir.y ∈ [−1, 1] onto [0, 1].
     return "sky_sphere {\n  pigment { gradient y color_map { [0 rgb " + vec(b.bottom) + "] [1 rgb " + vec(b.top) +
@@ -393,6 +436,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     const Refuser refuse(s);
     check_settings(s, refuse, opt.photons);
     for (const Material& m : s.materials) check_material(m, refuse);
+    if (has_environment_map(s)) check_environment_map(*s.background.map, refuse);
     const auto groups = dielectric_groups(s, refuse);
 
     std::ostringstream o;
@@ -407,11 +451,12 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     }
     o << "\n}\n";
     o << camera(s.camera);
-    o << background(s.background);
+    o << background(s.background, opt.environment_map);
     for (const Light& l : s.lights) {
         if (l.kind == Light::Kind::Directional) {
             // POV-Ray's parallel light: shadow rays along −direction to the plane through
-            // the location (trace.cpp ComputeOneWhiteLightRay), as refract's directional light.
+            // the location (trace.cpp ComputeOneWhiteLightRay), as refract's directional light
+            // (whose eye passes see a sun of any angular size as its centre direction).
             const Vec3 at = l.directional_position();
             o << "light_source { " << vec(at) << " color rgb " << vec(l.color) << " parallel point_at " << vec(at + l.direction)
               << " }\n";
@@ -466,6 +511,31 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     return o.str();
 }
 
-void write_pov(const Scene& scene, const std::string& path) { write_text_file(path, export_pov(scene)); }
+bool has_environment_map(const Scene& s) {
+    return s.background.kind == Background::Kind::Environment && s.background.map != nullptr;
+}
+
+void write_environment_map(const Scene& s, const std::string& path) {
+    if (!has_environment_map(s)) return;
+    const EnvironmentMap& m = *s.background.map;
+    std::error_code ec;
+    if (std::filesystem::equivalent(path, m.path, ec))
+        throw InputError(path + ": the exported map would overwrite the scene's own map; export elsewhere");
+    Image img(m.width, m.height);
+    img.rgb = m.rgb;
+    write_image(path, img);  // float OpenEXR: POV-Ray reads back the same halves
+}
+
+void write_pov(const Scene& scene, const std::string& path) {
+    // The map beside the .pov, named after it; only file-name-safe characters, so the
+    // name needs no escaping in the SDL string.
+    ExportOptions opt;
+    opt.environment_map = std::filesystem::path(path).stem().string() + "-environment.exr";
+    for (char& c : opt.environment_map)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
+    const std::string sdl = export_pov(scene, opt);  // refuses before anything is written
+    write_environment_map(scene, (std::filesystem::path(path).parent_path() / opt.environment_map).string());
+    write_text_file(path, sdl);
+}
 
 }  // namespace refract::validation

@@ -27,13 +27,26 @@ std::string export_pov(const Scene& scene);
 // object. POV-Ray then blocks the straight light through those objects (the caustic
 // replaces it), as refract's physical shadow rays do. Photons are jittered: compare such
 // renders statistically, never per pixel. With photons off the output is export_pov's.
+// `environment_map`: the file name by which the SDL refers to an environment light's map
+// (a sky_sphere image map, looked for beside the .pov); write_environment_map writes it.
 struct ExportOptions {
     bool photons = false;
     std::uint64_t photon_count = 0;
+    std::string environment_map = "environment.exr";
 };
 std::string export_pov(const Scene& scene, const ExportOptions& options);
 
-// export_pov written to `path` through a temporary name and a rename.
+// Whether the scene's background is an environment light with a map, i.e. whether the
+// exported SDL refers to a map file.
+bool has_environment_map(const Scene& scene);
+
+// Writes that map to `path` (a float OpenEXR file of the values refract looks up; the
+// export refuses a map whose values are not exactly half-precision, the precision in
+// which POV-Ray reads OpenEXR). Nothing without a map. Throws InputError naming the path.
+void write_environment_map(const Scene& scene, const std::string& path);
+
+// export_pov written to `path` through a temporary name and a rename; an environment
+// map beside it as STEM-environment.exr.
 void write_pov(const Scene& scene, const std::string& path);
 
 // Formats a double so that POV-Ray's parser reads back the same value (shortest

@@ -109,6 +109,11 @@ PovrayRender render_povray(const std::string& pov_source, int width, int height,
     const fs::path image = dir.path() / "out.png";
     const fs::path log_path = dir.path() / "povray.log";
     write_text_file(scene.string(), pov_source);
+    for (const std::string& f : opt.files) {
+        std::error_code ec;
+        fs::copy_file(f, dir.path() / fs::path(f).filename(), fs::copy_options::overwrite_existing, ec);
+        if (ec) throw PovrayError("cannot copy " + f + " for povray: " + ec.message());
+    }
 
     // Arguments: no antialiasing, no display, no pause, 16-bit linear PNG, terse output,
     // threads; no user ini (the temporary HOME has none).

@@ -4,6 +4,7 @@
 // temporary directory of its own with a clean environment and a time limit.
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 
@@ -25,6 +26,9 @@ struct PovrayOptions {
     std::string executable = "povray";  // a name looked up on PATH, or a path
     int threads = 2;                    // +WT<n>
     double timeout_seconds = 120;       // POV-Ray is killed after this
+    // Files the scene refers to by name (an environment map), copied beside it into the
+    // run's directory (under their own file names) before POV-Ray starts.
+    std::vector<std::string> files;
 };
 
 struct PovrayRender {

@@ -255,9 +255,15 @@ CaseResult run_case_inner(const std::string& name, const SuiteOptions& opt, std:
 
     // POV-Ray.
     std::string pov;
+    std::vector<std::string> pov_files;  // what scene.pov refers to, beside it
     try {
-        pov = export_pov(compat);
+        const ExportOptions eo;
+        pov = export_pov(compat, eo);
         write_text_file((case_dir / "scene.pov").string(), pov);
+        if (has_environment_map(compat)) {
+            pov_files.push_back((case_dir / eo.environment_map).string());
+            write_environment_map(compat, pov_files.back());
+        }
     } catch (const std::exception& e) {
         add_skip(c, std::string("not expressible in POV-Ray: ") + e.what());
         finish(c);
@@ -268,6 +274,7 @@ CaseResult run_case_inner(const std::string& name, const SuiteOptions& opt, std:
         PovrayOptions popt = opt.povray;
         popt.timeout_seconds = tol.timeout;
         if (opt.threads > 0) popt.threads = opt.threads;
+        popt.files = pov_files;
         const PovrayRender pr = render_povray(pov, compat.camera.width, compat.camera.height, popt);
         img_pov = pr.image;
         c.povray_seconds = pr.seconds;

@@ -1,0 +1,82 @@
+// refract farfield SCENE -o DIR [--binning sphere|axis] [--axis X Y Z] [--photons N] ...
+// The far-field detector (core/far_field.h): the power leaving the scene's transparent
+// objects binned by direction, per wavelength, event class and Stokes component.
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "core/far_field.h"
+#include "core/scene_json.h"
+#include "experiments/far_field_output.h"
+#include "experiments/plot.h"
+#include "geometry/error.h"
+
+namespace {
+
+struct FarFieldArgs {
+    std::string scene, output, binning = "sphere";
+    std::vector<double> axis, reference, wavelengths;
+    int bins = 180, azimuth_bins = 360, polar_bins = 180, classes = 5, threads = 0;
+    std::uint64_t photons = 1000000, seed = 7;
+    bool no_plot = false;
+};
+
+refract::cli::Registrar reg{17, [](CLI::App& app) {
+    auto a = std::make_shared<FarFieldArgs>();
+    auto* sub = app.add_subcommand("farfield",
+                                   "Far-field detector: the power leaving the transparent objects, binned by direction "
+                                   "(CSV, EXR map and plot)");
+    sub->add_option("scene", a->scene, "Scene file (JSON); its lights (point, directional, beam) shoot the photons")->required();
+    sub->add_option("-o,--output", a->output, "Output directory")->required();
+    sub->add_option("--binning", a->binning, "sphere (equal solid angle, azimuth x cos theta) or axis (angle to the axis)")
+        ->check(CLI::IsMember({"sphere", "axis"}));
+    sub->add_option("--axis", a->axis, "The axis X Y Z (default 0 0 1; for a beam's scattering angle: its direction)")->expected(3);
+    sub->add_option("--reference", a->reference, "Sphere binning: the direction of azimuth 0 (default 1 0 0)")->expected(3);
+    sub->add_option("--bins", a->bins, "Axis binning: bins in 0-180 degrees (180)")->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--azimuth-bins", a->azimuth_bins, "Sphere binning: azimuth bins (360)")->check(CLI::Range(1, 1 << 14));
+    sub->add_option("--polar-bins", a->polar_bins, "Sphere binning: polar bins, uniform in cos theta (180)")->check(CLI::Range(1, 1 << 14));
+    sub->add_option("--classes", a->classes, "Event classes: reflected, 0, 1, ... internal reflections, the last gathering the rest (5)")
+        ->check(CLI::Range(2, 64));
+    sub->add_option("--photons", a->photons, "Photons per light and wavelength (1000000)");
+    sub->add_option("--wavelengths", a->wavelengths,
+                    "Wavelengths in nm (default: the scene's sampling when a material is dispersive or absorbing, else 550)");
+    sub->add_option("--seed", a->seed, "Random seed (7)");
+    sub->add_option("--threads", a->threads, "Worker threads (0: all cores); the result does not depend on it")
+        ->check(CLI::Range(0, 1024));
+    sub->add_flag("--no-plot", a->no_plot, "Skip the gnuplot figure");
+    sub->callback([a] {
+        using namespace refract;
+        const Scene scene = load_scene(a->scene);
+        FarFieldSettings s;
+        s.binning = a->binning == "axis" ? FarFieldSettings::Binning::Axis : FarFieldSettings::Binning::Sphere;
+        if (!a->axis.empty()) s.axis = Vec3(a->axis[0], a->axis[1], a->axis[2]);
+        if (!a->reference.empty()) s.reference = Vec3(a->reference[0], a->reference[1], a->reference[2]);
+        s.angle_bins = a->bins;
+        s.azimuth_bins = a->azimuth_bins;
+        s.polar_bins = a->polar_bins;
+        s.classes = a->classes;
+        s.photons = a->photons;
+        s.seed = a->seed;
+        s.wavelengths = a->wavelengths;
+        if (scene.lights.empty()) throw InputError(a->scene + ": /lights: the far-field detector needs a light");
+        const FarFieldResult r = far_field(scene, s, a->threads);
+        experiments::FarFieldFiles files;
+        files.plot = !a->no_plot;
+        const auto written = experiments::write_far_field(a->output, r, "far field of " + a->scene, files);
+        std::cout << "far field: " << r.photons << " photons, " << r.segments << " segments, " << r.wavelengths.size()
+                  << " wavelength(s), " << experiments::fmt(r.seconds, 3) << " s\n";
+        for (size_t w = 0; w < r.wavelengths.size(); ++w) {
+            double scattered = 0;
+            for (int c = 0; c < r.classes; ++c)
+                for (int b = 0; b < r.bins; ++b) scattered += r.at(static_cast<int>(w), c, 0, b);
+            if (w == 0 || w + 1 == r.wavelengths.size())
+                std::cout << "  " << experiments::fmt(r.wavelengths[w]) << " nm: scattered " << experiments::fmt(scattered, 6)
+                          << ", unscattered " << experiments::fmt(r.unscattered[w], 6) << ", absorbed "
+                          << experiments::fmt(r.absorbed[w], 6) << ", dropped by the limits "
+                          << experiments::fmt(r.dropped[w], 6) << "\n";
+        }
+        for (const auto& f : written) std::cout << "  " << a->output << "/" << f << "\n";
+    });
+}};
+
+}  // namespace

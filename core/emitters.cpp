@@ -1,0 +1,108 @@
+#include "core/emitters.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refract {
+
+std::vector<BoundingSphere> transparent_targets(const Scene& scene) {
+    std::vector<BoundingSphere> targets;
+    for (const Object& o : scene.objects)
+        if (scene.materials[o.material].is<material::Dielectric>())
+            if (auto b = bounding_sphere(o.shape)) targets.push_back(*b);
+    return targets;
+}
+
+std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<BoundingSphere>& targets, const Vec3& centre,
+                                   std::uint64_t photons) {
+    std::vector<Emitter> out;
+    const std::uint64_t per_target = targets.empty() ? 0 : std::max<std::uint64_t>(1, photons / targets.size());
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const Light& L = scene.lights[l];
+        if (L.kind == Light::Kind::Beam) {
+            Emitter em;
+            em.kind = Emitter::Kind::Disk;
+            em.origin = L.position;
+            em.axis = L.direction;
+            em.radius = L.radius;
+            em.photons = std::max<std::uint64_t>(1, photons);
+            em.power = L.color * (M_PI * L.radius * L.radius / static_cast<double>(em.photons));  // irradiance × area
+            em.stream = (std::uint64_t{1} << 40) + l;  // apart from the (light, target) streams
+            em.light = l;
+            out.push_back(em);
+            continue;
+        }
+        for (size_t t = 0; t < targets.size(); ++t) {
+            const double R = targets[t].radius;
+            Emitter em;
+            em.photons = per_target;
+            em.stream = l * targets.size() + t;
+            em.light = l;
+            if (L.kind == Light::Kind::Directional) {
+                em.kind = Emitter::Kind::Disk;
+                em.axis = L.direction;
+                em.cos_max = std::cos(0.5 * L.angular_diameter_deg * M_PI / 180.0);
+                const double back = R * 1.01 + 1e-6;  // the disk stands just outside the sphere
+                em.origin = targets[t].centre - back * L.direction;
+                // A tilted ray from the disk must still reach every point of the sphere.
+                const double tan_max = std::sqrt(std::fmax(0.0, 1.0 - em.cos_max * em.cos_max)) / em.cos_max;
+                em.radius = R + (back + R) * tan_max;
+                em.power = L.color * (M_PI * em.radius * em.radius / static_cast<double>(per_target));
+            } else {
+                const Vec3 to = targets[t].centre - L.position;
+                const double d = to.norm();
+                if (d <= R) continue;  // light inside the bounds
+                const double sin_max = R / d;
+                em.cos_max = std::sqrt(1.0 - sin_max * sin_max);
+                em.dref = (centre - L.position).norm();
+                em.origin = L.position;
+                em.axis = to / d;
+                const double omega = 2.0 * M_PI * (1.0 - em.cos_max);
+                em.power = L.color * (em.dref * em.dref * omega / static_cast<double>(per_target));
+            }
+            out.push_back(em);
+        }
+    }
+    return out;
+}
+
+PhotonRay sample_photon(const Emitter& em, std::uint64_t seed, std::uint64_t p) {
+    Rng rng(seed, em.stream, p);
+    const double xi = rng.uniform();
+    const double phi = 2.0 * M_PI * rng.uniform();
+    const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+    const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
+    if (em.kind == Emitter::Kind::Cone) {  // uniform in the cone's solid angle
+        const double cos_t = 1.0 - xi * (1.0 - em.cos_max);
+        const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
+        return {Ray{em.origin, (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized()},
+                em.power};
+    }
+    // Uniform over the disk's area.
+    const Vec3 origin = em.origin + em.radius * std::sqrt(xi) * (std::cos(phi) * u + std::sin(phi) * v);
+    if (em.cos_max >= 1.0) return {Ray{origin, em.axis}, em.power};
+    // A sun's disk: a direction uniform in its cone, weighted by its cosine across the disk
+    // (radiance E / (π sin²α) over the cone's solid angle 2π(1 − cos α)).
+    const double cos_t = 1.0 - rng.uniform() * (1.0 - em.cos_max);
+    const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
+    const double psi = 2.0 * M_PI * rng.uniform();
+    const Vec3 dir = (cos_t * em.axis + sin_t * (std::cos(psi) * u + std::sin(psi) * v)).normalized();
+    const double sin2_max = 1.0 - em.cos_max * em.cos_max;
+    const double weight = cos_t * 2.0 * (1.0 - em.cos_max) / sin2_max;
+    return {Ray{origin, dir}, em.power * weight};
+}
+
+LightStokes emitted(const PolarisationState& p, const Vec3& dir) {
+    Vec3 ref = p.reference - p.reference.dot(dir) * dir;
+    if (ref.norm() < 1e-9) ref = Vec3(1, 0, 0) - dir.x() * dir;  // the beam runs along the reference
+    LightStokes s;
+    s.x = ref.normalized();
+    switch (p.kind) {
+        case PolarisationState::Kind::Unpolarised: s.S = polar::unpolarised(1.0); break;
+        case PolarisationState::Kind::Linear: s.S = polar::linear(1.0, p.angle_deg * M_PI / 180.0); break;
+        case PolarisationState::Kind::Circular: s.S = polar::circular(1.0, p.handedness); break;
+    }
+    return s;
+}
+
+}  // namespace refract

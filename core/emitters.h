@@ -1,0 +1,52 @@
+#pragma once
+// Where the light pass and the far-field detector start their photons: each light
+// becomes one or more emitters, each a way of drawing a photon's ray and its power.
+//   point light        photons into the cone around each target's bounding sphere,
+//                      uniform in solid angle (no distance falloff: a photon's power is
+//                      that at the reference distance `dref`, see core/light_pass.h)
+//   directional (sun)  parallel photons through the disk of each target's radius across
+//                      the light; a sun of angular diameter α draws each direction
+//                      uniformly in its cone, of radiance E / (π sin²(α/2))
+//   beam               parallel photons uniform over its disk (whatever they hit)
+// Targets are the transparent objects' bounding spheres; a light's photons are split
+// evenly over them (a beam's are its own).
+#include <cstdint>
+#include <vector>
+
+#include "core/polarisation_state.h"
+#include "core/random.h"
+#include "core/scene.h"
+
+namespace refract {
+
+struct Emitter {
+    enum class Kind { Cone, Disk };
+    Kind kind = Kind::Cone;
+    Vec3 origin, axis;     // cone apex / disk centre; the central direction
+    Vec3 power;            // one photon's power (a cone's: at the reference distance)
+    double cos_max = 1;    // cone: half-angle; disk: the sun's half-angle (1: parallel)
+    double dref = 0;       // cone: the reference distance (0 for parallel light)
+    double radius = 0;     // disk
+    std::uint64_t photons = 0, stream = 0;
+    size_t light = 0;
+};
+
+// The transparent (dielectric) objects' bounding spheres.
+std::vector<BoundingSphere> transparent_targets(const Scene& scene);
+
+// The emitters of every light, `photons` per light. `dref` of the cones: the distance
+// from the light to `centre` (the targets' centre).
+std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<BoundingSphere>& targets, const Vec3& centre,
+                                   std::uint64_t photons);
+
+struct PhotonRay {
+    Ray ray;
+    Vec3 power;
+};
+// Photon p of emitter em, drawn from its own stream Rng(seed, em.stream, p).
+PhotonRay sample_photon(const Emitter& em, std::uint64_t seed, std::uint64_t p);
+
+// A light's polarisation as a photon leaving along `dir` carries it (S0 = 1).
+LightStokes emitted(const PolarisationState& p, const Vec3& dir);
+
+}  // namespace refract

@@ -1,0 +1,280 @@
+#include "core/far_field.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/emitters.h"
+#include "core/integrators/spectral.h"
+#include "core/ray_tree.h"
+#include "geometry/error.h"
+
+namespace refract {
+
+namespace {
+
+constexpr double kFixedScale = 4503599627370496.0;  // 2^52 units for one wavelength's emitted power
+
+// The detector's directions: the axis and a frame across it.
+struct Geometry {
+    FarFieldSettings::Binning binning;
+    Vec3 w, u, v;  // axis; φ = 0 and φ = 90° across it
+    int nphi, ncos, nangle;
+    std::vector<double> cos_edges;  // axis binning: −cos of the bins' edges, increasing
+
+    explicit Geometry(const FarFieldSettings& s)
+        : binning(s.binning), w(s.axis.normalized()), nphi(s.azimuth_bins), ncos(s.polar_bins), nangle(s.angle_bins) {
+        if (binning == FarFieldSettings::Binning::Axis)
+            for (int k = 1; k < nangle; ++k) cos_edges.push_back(-std::cos(M_PI * k / nangle));
+        Vec3 r = s.reference - s.reference.dot(w) * w;
+        if (r.norm() < 1e-9) r = (std::abs(w.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)) - w * (std::abs(w.x()) < 0.9 ? w.x() : w.y());
+        u = r.normalized();
+        v = w.cross(u);
+    }
+    int bins() const { return binning == FarFieldSettings::Binning::Sphere ? nphi * ncos : nangle; }
+    int bin_of(const Vec3& d) const {
+        const double c = std::clamp(d.dot(w), -1.0, 1.0);
+        if (binning == FarFieldSettings::Binning::Axis)  // θ = acos c, by its bins' cosines
+            return static_cast<int>(std::upper_bound(cos_edges.begin(), cos_edges.end(), -c) - cos_edges.begin());
+        const int row = std::min(ncos - 1, static_cast<int>((1.0 - c) * 0.5 * ncos));
+        double phi = std::atan2(d.dot(v), d.dot(u));
+        if (phi < 0) phi += 2.0 * M_PI;
+        const int col = std::min(nphi - 1, static_cast<int>(phi / (2.0 * M_PI) * nphi));
+        return row * nphi + col;
+    }
+    // The Stokes frame's x̂ for a photon leaving along d: ⊥ the plane of the axis and d.
+    Vec3 stokes_x(const Vec3& d) const {
+        const Vec3 x = w.cross(d);
+        return x.norm() > 1e-12 ? Vec3(x.normalized()) : v;
+    }
+};
+
+void check(const FarFieldSettings& s) {
+    const auto positive_count = [](int n, const char* name, int max) {
+        if (!(n >= 1 && n <= max))
+            throw InputError(std::string("far field: ") + name + " must be in [1, " + std::to_string(max) + "], got " +
+                             std::to_string(n));
+    };
+    if (!s.axis.allFinite() || !(s.axis.norm() > 0)) throw InputError("far field: the axis must be a finite, non-zero vector");
+    if (!s.reference.allFinite()) throw InputError("far field: the reference must be finite");
+    positive_count(s.azimuth_bins, "azimuth bins", 1 << 14);
+    positive_count(s.polar_bins, "polar bins", 1 << 14);
+    positive_count(s.angle_bins, "angle bins", 1 << 20);
+    positive_count(s.classes, "classes", 64);
+    if (s.photons < 1 || s.photons > (std::uint64_t{1} << 40))
+        throw InputError("far field: photons must be in [1, 2^40], got " + std::to_string(s.photons));
+    if (s.wavelengths.size() > 1001) throw InputError("far field: at most 1001 wavelengths");
+    for (double l : s.wavelengths)
+        if (!(l >= spectrum::kMinWavelength && l <= spectrum::kMaxWavelength))
+            throw InputError("far field: wavelength " + std::to_string(l) + " nm outside [360, 830] nm");
+}
+
+struct Tally {
+    std::vector<std::int64_t> bins;
+    std::int64_t unscattered = 0, absorbed = 0, dropped = 0;
+    std::uint64_t segments = 0;
+};
+
+template <class P>
+struct FarFieldEnds {
+    using Entry = TreeEntryT<P>;
+    const Geometry& geo;
+    const SpectralContext& ctx;
+    Tally& tally;
+    double scale;
+    int classes, components, bins;
+
+    static double amount(const Entry& e) { return e.weight.mean(); }
+    void deposit(const TreeEntryT<NaturalLight>& e, int cls, int b) {
+        tally.bins[static_cast<size_t>(cls * bins + b)] += std::llround(amount(e) * scale);
+    }
+    void deposit(const TreeEntryT<LightStokes>& e, int cls, int b) {
+        const Vec3& d = e.ray.dir;
+        const polar::Stokes S = polar::rotator(polar::frame_angle(e.pol.x, geo.stokes_x(d), d)) * e.pol.S;
+        for (int s = 0; s < 4; ++s)
+            tally.bins[static_cast<size_t>((cls * 4 + s) * bins + b)] += std::llround(amount(e) * S[s] * scale);
+    }
+    void background(const Entry& e) {
+        if (e.depth == 0) {
+            tally.unscattered += std::llround(amount(e) * scale);
+            return;
+        }
+        const int cls = e.transmissions == 0 ? 0 : 1 + std::min<int>(e.reflections, classes - 2);
+        deposit(e, std::min(cls, classes - 1), geo.bin_of(e.ray.dir));
+    }
+    void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed += std::llround(amount(e) * scale); }
+    bool intercept(RayTreeWalkerT<P>&, const Entry&, const SurfaceHit&, typename RayTreeWalkerT<P>::List&) { return false; }
+    double band_ior(const Entry& e, const SurfaceHit& h) const {
+        return ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
+    }
+    double wavelength(const Entry& e) const { return ctx.all_wavelengths[static_cast<size_t>(e.band)]; }
+};
+
+bool spectral_scene(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (const auto* d = m.dielectric(); d && (d->dispersion || d->absorption)) return true;
+    return false;
+}
+
+}  // namespace
+
+double FarFieldResult::solid_angle(int b) const {
+    if (settings.binning == FarFieldSettings::Binning::Sphere) return 4.0 * M_PI / bins;
+    const double t0 = M_PI * b / bins, t1 = M_PI * (b + 1) / bins;
+    return 2.0 * M_PI * (std::cos(t0) - std::cos(t1));
+}
+
+double FarFieldResult::theta_deg(int b) const {
+    if (settings.binning == FarFieldSettings::Binning::Axis) return 180.0 * (b + 0.5) / bins;
+    const int row = b / settings.azimuth_bins;
+    return std::acos(1.0 - 2.0 * (row + 0.5) / settings.polar_bins) * 180.0 / M_PI;
+}
+
+double FarFieldResult::phi_deg(int b) const {
+    if (settings.binning == FarFieldSettings::Binning::Axis) return 0.0;
+    return 360.0 * (b % settings.azimuth_bins + 0.5) / settings.azimuth_bins;
+}
+
+Vec3 bin_direction(const FarFieldSettings& s, int b) {
+    FarFieldResult r;
+    r.settings = s;
+    r.bins = Geometry(s).bins();
+    const Geometry geo(s);
+    const double t = r.theta_deg(b) * M_PI / 180.0, p = r.phi_deg(b) * M_PI / 180.0;
+    return std::cos(t) * geo.w + std::sin(t) * (std::cos(p) * geo.u + std::sin(p) * geo.v);
+}
+
+int FarFieldResult::bin_of(const Vec3& dir) const { return Geometry(settings).bin_of(dir.normalized()); }
+
+std::string FarFieldResult::class_name(int c) const {
+    if (c == 0) return "reflected";
+    const int k = c - 1;
+    const std::string n = std::to_string(k) + (k == 1 ? " internal reflection" : " internal reflections");
+    return c == classes - 1 && classes > 2 ? "≥ " + n : n;
+}
+
+FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings, int threads) {
+    check(settings);
+    const auto t0 = std::chrono::steady_clock::now();
+    FarFieldResult r;
+    r.settings = settings;
+    r.settings.axis = settings.axis.normalized();
+    // The spectral context of the scene (its limits), with the runs' wavelengths and every
+    // material's index at each of them.
+    Scene scene = scene_in;
+    if (!settings.wavelengths.empty()) {
+        r.wavelengths = settings.wavelengths;
+    } else if (spectral_scene(scene)) {
+        r.wavelengths = spectrum::sample_wavelengths(scene.settings.spectral.sampling, scene.source);
+    } else {
+        r.wavelengths = {550.0};
+    }
+    for (size_t k = 1; k < r.wavelengths.size(); ++k)
+        if (!(r.wavelengths[k] > r.wavelengths[k - 1]))
+            throw InputError("far field: wavelengths must be strictly increasing");
+    scene.settings.compat = Compat::Physical;
+    scene.settings.spectral.shortcut = false;
+    SpectralContext ctx = SpectralContext::build(scene);
+    ctx.all_wavelengths = r.wavelengths;  // exact values, also for an uneven list
+    ctx.index.assign(r.wavelengths.size(), std::vector<double>(scene.materials.size(), 0.0));
+    for (size_t mi = 0; mi < scene.materials.size(); ++mi)
+        if (const auto* d = scene.materials[mi].dielectric(); d && d->dispersion)
+            for (size_t w = 0; w < r.wavelengths.size(); ++w) ctx.index[w][mi] = d->dispersion->n(r.wavelengths[w]);
+
+    const Geometry geo(r.settings);
+    const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
+    r.bins = geo.bins();
+    r.classes = settings.classes;
+    r.components = exact ? 4 : 1;
+    const size_t per_wavelength = static_cast<size_t>(r.classes) * static_cast<size_t>(r.components) * static_cast<size_t>(r.bins);
+    if (per_wavelength * r.wavelengths.size() > (size_t{1} << 28))
+        throw InputError("far field: " + std::to_string(per_wavelength * r.wavelengths.size()) +
+                         " bins × classes × components × wavelengths exceed 2^28 values");
+    r.power.assign(per_wavelength * r.wavelengths.size(), 0.0);
+    r.unscattered.assign(r.wavelengths.size(), 0.0);
+    r.absorbed.assign(r.wavelengths.size(), 0.0);
+    r.dropped.assign(r.wavelengths.size(), 0.0);
+
+    const std::vector<BoundingSphere> targets = transparent_targets(scene);
+    Vec3 centre(0, 0, 0);
+    for (const auto& t : targets) centre += t.centre / static_cast<double>(targets.size());
+    const std::vector<Emitter> emitters = make_emitters(scene, targets, centre, settings.photons);
+    double total = 0;  // emitted per wavelength
+    for (const Emitter& em : emitters) total += em.power.mean() * static_cast<double>(em.photons);
+    r.emitted_power = total;
+    if (emitters.empty() || !(total > 0)) {
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return r;
+    }
+
+    SceneTracer tracer(scene);
+    const TreeLimits limits = ctx.limits(scene.settings);
+    const int nthreads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena arena(nthreads);
+    constexpr std::uint64_t kChunk = 4096;
+    for (size_t w = 0; w < r.wavelengths.size(); ++w) {
+        // Powers in units of the emitted power (the lights' spectrum cancels).
+        const double scale = kFixedScale / total;
+        tbb::enumerable_thread_specific<Tally> tallies([&] {
+            Tally t;
+            t.bins.assign(per_wavelength, 0);
+            return t;
+        });
+        for (const Emitter& em : emitters) {
+            const PolarisationState& pol = scene.lights[em.light].polarisation;
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, em.photons, kChunk),
+                                  [&](const tbb::blocked_range<std::uint64_t>& range) {
+                    Tally& tally = tallies.local();
+                    RenderStats st;
+                    const auto run = [&](auto payload) {
+                        using P = decltype(payload);
+                        RayTreeWalkerT<P> walker(tracer, limits, st);
+                        FarFieldEnds<P> ends{geo, ctx, tally, scale, r.classes, r.components, r.bins};
+                        typename RayTreeWalkerT<P>::List list;  // one list for the chunk's photons
+                        for (std::uint64_t p = range.begin(); p != range.end(); ++p) {
+                            const auto [ray, power] = sample_photon(em, settings.seed + w * 0x9E3779B9ull, p);
+                            TreeEntryT<P> e{ray, Vec3::Constant(power.mean())};
+                            e.band = static_cast<std::int16_t>(w);
+                            if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(pol, ray.dir);
+                            list.push_back(e);
+                            const double lost0 = st.lost_depth + st.lost_limits + st.lost_threshold;
+                            walker.walk(list, ends);
+                            // The weight the walker dropped (the photon's power rides on it).
+                            const double lost = st.lost_depth + st.lost_limits + st.lost_threshold - lost0;
+                            tally.dropped += std::llround(lost * scale);
+                        }
+                    };
+                    if (exact) run(LightStokes{});
+                    else run(NaturalLight{});
+                    tally.segments += st.segments;
+                });
+            });
+        }
+        Tally sum;
+        sum.bins.assign(per_wavelength, 0);
+        for (const Tally& t : tallies) {
+            for (size_t k = 0; k < per_wavelength; ++k) sum.bins[k] += t.bins[k];
+            sum.unscattered += t.unscattered;
+            sum.absorbed += t.absorbed;
+            sum.dropped += t.dropped;
+            sum.segments += t.segments;
+        }
+        for (size_t k = 0; k < per_wavelength; ++k)
+            r.power[w * per_wavelength + k] = static_cast<double>(sum.bins[k]) / kFixedScale;
+        r.unscattered[w] = static_cast<double>(sum.unscattered) / kFixedScale;
+        r.absorbed[w] = static_cast<double>(sum.absorbed) / kFixedScale;
+        r.dropped[w] = static_cast<double>(sum.dropped) / kFixedScale;
+        r.segments += sum.segments;
+        for (const Emitter& em : emitters) r.photons += em.photons;
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+}
+
+}  // namespace refract

@@ -1,0 +1,37 @@
+#pragma once
+// Writing a far-field detector's result (core/far_field.h): the numbers, a map and a plot.
+//   DIR/far_field.csv          per wavelength, class and θ bin (the sphere binning summed
+//                              over φ): solid angle, power fraction, intensity (fraction
+//                              per steradian) and, with exact polarisation, S1..S3 and the
+//                              degree of polarisation
+//   DIR/far_field_summary.csv  per wavelength: each class's total, unscattered, absorbed,
+//                              dropped by the limits, and their sum (1 when nothing else
+//                              was lost)
+//   DIR/far_field.exr          the map of intensity per bin (sphere: φ across, θ down,
+//                              equal solid angle per pixel; axis: one row of θ bins):
+//                              channels R, G, B (the spectrum's colour, xyz-srgb, white =
+//                              a wavelength-independent fraction), total, one per class,
+//                              one per wavelength, and S1..S3 with exact polarisation; the
+//                              binning in the header (refract:far_field_*)
+//   DIR/far_field.png/.pdf/.gp intensity against θ per class (gnuplot; skipped without it)
+#include <string>
+
+#include "core/far_field.h"
+
+namespace refract::experiments {
+
+struct FarFieldFiles {
+    bool plot = true;  // false: no gnuplot figure
+};
+
+// Writes the files above into `dir` (created); returns the names written.
+std::vector<std::string> write_far_field(const std::string& dir, const FarFieldResult& r, const std::string& title,
+                                         const FarFieldFiles& opt = {});
+
+// Intensity (fraction per sr) against θ: the sphere binning summed over φ, per
+// wavelength w and class c (component s); axis binning as is.
+std::vector<double> theta_profile(const FarFieldResult& r, int w, int c, int s = 0);
+// The θ bins' edges (degrees) of theta_profile.
+std::vector<double> theta_edges_deg(const FarFieldResult& r);
+
+}  // namespace refract::experiments

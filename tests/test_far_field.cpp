@@ -1,0 +1,196 @@
+// The far-field detector (core/far_field.h), collimated beams and a sun's angular size.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "core/far_field.h"
+#include "core/optics.h"
+#include "core/scene_json.h"
+#include "geometry/error.h"
+
+using namespace refract;
+using nlohmann::json;
+
+namespace {
+
+// A unit sphere of index n lit by a beam along +z that just covers it.
+json drop_scene(double n, const json& render = json::object()) {
+    return json{{"camera", {{"location", {0, 0, -5}}, {"look_at", {0, 0, 0}}, {"angle", 40}, {"width", 8}, {"height", 8}}},
+                {"materials", {{"glass", {{"type", "dielectric"}, {"ior", n}}}}},
+                {"objects", {{{"type", "sphere"}, {"name", "drop"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
+                {"lights", {{{"type", "beam"}, {"position", {0, 0, -3}}, {"direction", {0, 0, 1}}, {"radius", 1}}}},
+                {"render", render}};
+}
+
+FarFieldSettings axis_bins(int bins, std::uint64_t photons) {
+    FarFieldSettings s;
+    s.binning = FarFieldSettings::Binning::Axis;
+    s.axis = Vec3(0, 0, 1);
+    s.angle_bins = bins;
+    s.photons = photons;
+    return s;
+}
+
+double class_total(const FarFieldResult& r, int c, int s = 0) {
+    double t = 0;
+    for (int b = 0; b < r.bins; ++b) t += r.at(0, c, s, b);
+    return t;
+}
+
+// ∫ R(i) d(sin² i) over the sphere's cross-section: the externally reflected fraction.
+double reflected_fraction(double n) {
+    const int N = 200000;
+    double sum = 0;
+    for (int k = 0; k < N; ++k) {
+        const double u = (k + 0.5) / N;  // sin² i
+        sum += optics::fresnel_reflectance(std::sqrt(1.0 - u), n) / N;
+    }
+    return sum;
+}
+
+}  // namespace
+
+TEST_CASE("Far field: energy is conserved (scattered + dropped = the beam's power)", "[far-field]") {
+    const Scene s = parse_scene(drop_scene(1.5, {{"max_depth", 12}, {"threshold", 1e-4}}), "drop.json");
+    const FarFieldResult r = far_field(s, axis_bins(90, 20000), 2);
+    double total = r.unscattered[0] + r.absorbed[0] + r.dropped[0];
+    for (int c = 0; c < r.classes; ++c) total += class_total(r, c);
+    CHECK(total == Approx(1.0).margin(1e-12));
+    CHECK(r.dropped[0] > 0);
+    CHECK(r.unscattered[0] == 0);  // the beam just covers the sphere
+}
+
+TEST_CASE("Far field: an index-1 sphere sends the whole beam straight on, in class 0 internal reflections",
+          "[far-field]") {
+    const Scene s = parse_scene(drop_scene(1.0), "clear.json");
+    const FarFieldResult r = far_field(s, axis_bins(36, 5000), 1);
+    CHECK(r.at(0, 1, 0, 0) == Approx(1.0).margin(1e-12));
+    CHECK(class_total(r, 0) == 0);
+}
+
+TEST_CASE("Far field: the externally reflected fraction of a sphere is the disk average of Fresnel's R",
+          "[far-field]") {
+    // Van de Hulst's p = 0 class: ∫ R d(sin² i), 0.0665 for water.
+    const Scene s = parse_scene(drop_scene(1.333), "water.json");
+    const FarFieldResult r = far_field(s, axis_bins(180, 200000), 2);
+    const double expected = reflected_fraction(1.333);
+    CHECK(expected == Approx(0.0665).margin(5e-4));
+    CHECK(class_total(r, 0) == Approx(expected).margin(1.5e-3));  // 200 000 photons: σ ≈ 4e-4
+}
+
+TEST_CASE("Far field: the result does not depend on the thread count", "[far-field]") {
+    const Scene s = parse_scene(drop_scene(1.333, {{"polarisation", "exact"}}), "water.json");
+    const FarFieldResult a = far_field(s, axis_bins(60, 20000), 1), b = far_field(s, axis_bins(60, 20000), 2);
+    CHECK(a.power == b.power);
+    CHECK(a.dropped == b.dropped);
+}
+
+TEST_CASE("Far field: light reflected at Brewster's angle is polarised perpendicular to the scattering plane",
+          "[far-field]") {
+    // External reflection at θ_B leaves at scattering angle 180° − 2θ_B (73.7° for n = 1.333)
+    // with Rp = 0: S1 = +S0 in the detector's frame (x̂ ⊥ the scattering plane).
+    const double n = 1.333;
+    const Scene s = parse_scene(drop_scene(n, {{"polarisation", "exact"}}), "water.json");
+    const FarFieldResult r = far_field(s, axis_bins(180, 200000), 2);
+    const double theta = 180.0 - 2.0 * optics::brewster_angle(n) * 180.0 / M_PI;
+    const int b = r.bin_of(Vec3(std::sin(theta * M_PI / 180), 0, std::cos(theta * M_PI / 180)));
+    REQUIRE(r.at(0, 0, 0, b) > 0);
+    CHECK(r.at(0, 0, 1, b) / r.at(0, 0, 0, b) > 0.999);
+    // Natural light in, so the reflected light's polarisation is linear: S3 = 0.
+    CHECK(std::abs(r.at(0, 0, 3, b)) < 1e-12);
+}
+
+TEST_CASE("Far field: the bins' solid angles cover the sphere", "[far-field]") {
+    FarFieldResult r;
+    r.settings.binning = FarFieldSettings::Binning::Sphere;
+    r.settings.azimuth_bins = 12;
+    r.settings.polar_bins = 7;
+    r.bins = 84;
+    double sum = 0;
+    for (int b = 0; b < r.bins; ++b) sum += r.solid_angle(b);
+    CHECK(sum == Approx(4 * M_PI).epsilon(1e-14));
+    CHECK(r.bin_of(Vec3(0, 0, 1)) == 0);                // θ = 0: the first row
+    CHECK(r.bin_of(Vec3(0, 0, -1)) / 12 == 6);          // θ = 180°: the last row
+    CHECK(r.bin_of(Vec3(0, 1, 0.01)) % 12 == 3);        // φ = 90° from the reference x
+    r.settings.binning = FarFieldSettings::Binning::Axis;
+    r.bins = 180;
+    sum = 0;
+    for (int b = 0; b < r.bins; ++b) sum += r.solid_angle(b);
+    CHECK(sum == Approx(4 * M_PI).epsilon(1e-14));
+    CHECK(r.bin_of(Vec3(std::sin(0.7), 0, std::cos(0.7))) == static_cast<int>(0.7 * 180 / M_PI));
+}
+
+TEST_CASE("Sun of angular diameter alpha: the light through an index-1 sphere spreads over its cone", "[far-field]") {
+    json j = drop_scene(1.0);
+    j["lights"] = {{{"type", "directional"}, {"direction", {0, 0, 1}}, {"angular_diameter_deg", 10}}};
+    const Scene s = parse_scene(j, "sun.json");
+    FarFieldSettings set;  // sphere binning about the sun's direction
+    set.axis = Vec3(0, 0, 1);
+    set.azimuth_bins = 4;
+    set.polar_bins = 4000;  // rows of 1/2000 in cos θ
+    set.photons = 200000;
+    const FarFieldResult r = far_field(s, set, 2);
+    // Radiance is uniform over the sun's disk and the sphere shows every direction the
+    // same cross-section: the power through it is uniform in solid angle over the cone of
+    // half-angle 5°. The rows inside 2.5° end at cos θ = 1 − rows/2000.
+    double inner = 0, all = 0;
+    int rows = 0;
+    for (int b = 0; b < r.bins; ++b) {
+        const double p = r.at(0, 1, 0, b);
+        all += p;
+        if (r.theta_deg(b) < 2.5) {
+            inner += p;
+            if (b % 4 == 0) ++rows;
+        }
+    }
+    CHECK(all > 0.5);
+    const double expected = (rows / 2000.0) / (1.0 - std::cos(5 * M_PI / 180));
+    CHECK(inner / all == Approx(expected).margin(0.005));
+    for (int b = 0; b < r.bins; ++b)
+        if (r.theta_deg(b) > 5.2) CHECK(r.at(0, 1, 0, b) == 0);
+}
+
+TEST_CASE("Collimated beam: a point is lit only inside the beam's cylinder, ahead of its start", "[light]") {
+    Light beam;
+    beam.kind = Light::Kind::Beam;
+    beam.position = Vec3(0, 0, 0);
+    beam.direction = Vec3(0, 0, 1);
+    beam.radius = 0.5;
+    REQUIRE(beam.toward(Vec3(0.3, 0.3, 2)).has_value());
+    CHECK(beam.toward(Vec3(0.3, 0.3, 2))->end.z() == Approx(0).margin(1e-15));
+    CHECK(beam.toward(Vec3(0.3, 0.3, 2))->dir.z() == -1);
+    CHECK_FALSE(beam.toward(Vec3(0.4, 0.4, 2)).has_value());   // outside the radius
+    CHECK_FALSE(beam.toward(Vec3(0.0, 0.0, -1)).has_value());  // behind the start
+}
+
+TEST_CASE("Far field and beams: bad settings are refused, naming the setting", "[far-field]") {
+    const Scene s = parse_scene(drop_scene(1.5), "drop.json");
+    FarFieldSettings set = axis_bins(0, 10);
+    CHECK_THROWS_WITH(far_field(s, set), Catch::Contains("angle bins"));
+    set = axis_bins(10, 10);
+    set.axis = Vec3(0, 0, 0);
+    CHECK_THROWS_WITH(far_field(s, set), Catch::Contains("axis"));
+    set = axis_bins(10, 10);
+    set.wavelengths = {300};
+    CHECK_THROWS_WITH(far_field(s, set), Catch::Contains("wavelength"));
+    json j = drop_scene(1.5);
+    j["lights"][0]["radius"] = -1;
+    CHECK_THROWS_WITH(parse_scene(j, "beam.json"), Catch::Contains("/lights/0/radius"));
+    j = drop_scene(1.5);
+    j["lights"] = {{{"type", "directional"}, {"direction", {0, 0, 1}}, {"angular_diameter_deg", 95}}};
+    CHECK_THROWS_WITH(parse_scene(j, "sun.json"), Catch::Contains("/lights/0/angular_diameter_deg"));
+    j = drop_scene(1.5);
+    j["lights"].push_back({{"type", "point"}, {"position", {0, 5, 0}}, {"spectrum", "D65"}});
+    j["lights"][0]["spectrum"] = {{"blackbody", 5778}};
+    CHECK_THROWS_WITH(parse_scene(j, "two.json"), Catch::Contains("/lights/1/spectrum"));
+}
+
+TEST_CASE("A light's spectrum becomes the scene's light spectrum", "[light]") {
+    json j = drop_scene(1.5);
+    j["lights"][0]["spectrum"] = {{"blackbody", 5778}};
+    const Scene s = parse_scene(j, "sun.json");
+    CHECK(s.settings.spectral.light.kind == spectrum::Illuminant::Blackbody);
+    CHECK(s.settings.spectral.light.temperature_K == 5778);
+}
