@@ -58,7 +58,8 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
         s.photons = a->photons;
         s.seed = a->seed;
         s.wavelengths = a->wavelengths;
-        if (scene.lights.empty()) throw InputError(a->scene + ": /lights: the far-field detector needs a light");
+        if (scene.lights.empty() && scene.background.kind != Background::Kind::Environment)
+            throw InputError(a->scene + ": /lights: the far-field detector needs a light or an environment background");
         const FarFieldResult r = far_field(scene, s, a->threads);
         experiments::FarFieldFiles files;
         files.plot = !a->no_plot;

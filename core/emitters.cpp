@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/environment_map.h"
+
 namespace refract {
 
 std::vector<BoundingSphere> transparent_targets(const Scene& scene) {
@@ -63,11 +65,51 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
             out.push_back(em);
         }
     }
+    if (scene.background.kind == Background::Kind::Environment) {
+        const Background& bg = scene.background;
+        // The brightest radiance bounds a photon's power (the light pass's fixed point).
+        Vec3 max_l = bg.color;
+        if (bg.map) {
+            max_l = Vec3::Zero();
+            for (int j = 0; j < bg.map->height; ++j)
+                for (int i = 0; i < bg.map->width; ++i) max_l = max_l.cwiseMax(bg.map->pixel(i, j));
+        }
+        max_l *= bg.scale;
+        for (size_t t = 0; t < targets.size(); ++t) {
+            const double R = targets[t].radius;
+            Emitter em;
+            em.kind = Emitter::Kind::Environment;
+            em.origin = targets[t].centre;
+            em.axis = Vec3(0, 0, 1);
+            em.radius = R * 1.01 + 1e-6;
+            em.photons = per_target;
+            em.stream = (std::uint64_t{1} << 41) + t;
+            em.environment = &bg;
+            em.geometry = M_PI * em.radius * em.radius * 4.0 * M_PI / static_cast<double>(per_target);
+            em.power = max_l * em.geometry;
+            if (max_l.maxCoeff() > 0) out.push_back(em);
+        }
+    }
     return out;
+}
+
+const PolarisationState& emitter_polarisation(const Scene& scene, const Emitter& em) {
+    static const PolarisationState unpolarised;
+    return em.kind == Emitter::Kind::Environment ? unpolarised : scene.lights[em.light].polarisation;
 }
 
 PhotonRay sample_photon(const Emitter& em, std::uint64_t seed, std::uint64_t p) {
     Rng rng(seed, em.stream, p);
+    if (em.kind == Emitter::Kind::Environment) {
+        // A direction of travel d uniform on the sphere, from the environment at −d, through
+        // the disk across d that covers the target.
+        const Vec3 d = rng.unit_vector();
+        const Vec3 a = std::abs(d.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+        const Vec3 u = d.cross(a).normalized(), v = d.cross(u);
+        const double r = em.radius * std::sqrt(rng.uniform()), phi = 2.0 * M_PI * rng.uniform();
+        const Vec3 origin = em.origin - em.radius * d + r * (std::cos(phi) * u + std::sin(phi) * v);
+        return {Ray{origin, d}, em.environment->radiance(-d) * em.geometry};
+    }
     const double xi = rng.uniform();
     const double phi = 2.0 * M_PI * rng.uniform();
     const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);

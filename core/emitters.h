@@ -8,6 +8,9 @@
 //                      the light; a sun of angular diameter α draws each direction
 //                      uniformly in its cone, of radiance E / (π sin²(α/2))
 //   beam               parallel photons uniform over its disk (whatever they hit)
+//   environment        (a background of type environment) directions uniform over the
+//                      sphere, each a parallel photon through the disk of each target's
+//                      radius across it, of power L(−d) · πR² · 4π / N (unpolarised)
 // Targets are the transparent objects' bounding spheres; a light's photons are split
 // evenly over them (a beam's are its own).
 #include <cstdint>
@@ -20,7 +23,7 @@
 namespace refract {
 
 struct Emitter {
-    enum class Kind { Cone, Disk };
+    enum class Kind { Cone, Disk, Environment };
     Kind kind = Kind::Cone;
     Vec3 origin, axis;     // cone apex / disk centre; the central direction
     Vec3 power;            // one photon's power (a cone's: at the reference distance)
@@ -28,8 +31,13 @@ struct Emitter {
     double dref = 0;       // cone: the reference distance (0 for parallel light)
     double radius = 0;     // disk
     std::uint64_t photons = 0, stream = 0;
-    size_t light = 0;
+    size_t light = 0;            // index into Scene::lights (not for the environment)
+    const Background* environment = nullptr;  // Environment: the radiance lookup
+    double geometry = 0;         // Environment: πR² · 4π / N, times L(−d) per photon
 };
+
+// The polarisation an emitter's photons start with (the environment's: unpolarised).
+const PolarisationState& emitter_polarisation(const Scene& scene, const Emitter& em);
 
 // The transparent (dielectric) objects' bounding spheres.
 std::vector<BoundingSphere> transparent_targets(const Scene& scene);

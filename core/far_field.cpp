@@ -226,7 +226,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
             return t;
         });
         for (const Emitter& em : emitters) {
-            const PolarisationState& pol = scene.lights[em.light].polarisation;
+            const PolarisationState& pol = emitter_polarisation(scene, em);
             arena.execute([&] {
                 tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, em.photons, kChunk),
                                   [&](const tbb::blocked_range<std::uint64_t>& range) {

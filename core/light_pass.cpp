@@ -103,7 +103,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     auto maps = std::make_shared<IlluminationMaps>();
     const std::vector<BoundingSphere> targets = transparent_targets(scene);
     maps->by_object.resize(scene.objects.size());
-    if (targets.empty() || scene.lights.empty()) return maps;
+    if (targets.empty()) return maps;
     Vec3 centre(0, 0, 0);
     double extent = 0;
     for (const auto& t : targets) centre += t.centre / static_cast<double>(targets.size());
@@ -140,7 +140,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
             RayTreeWalkerT<LightStokes> walker(tracer, limits, st);
             PhotonEnds<LightStokes> ends{scene, ctx, *maps, acc, em.dref, st, dep};
             RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{ray, power}};
-            list.front().pol = emitted(scene.lights[em.light].polarisation, ray.dir);
+            list.front().pol = emitted(emitter_polarisation(scene, em), ray.dir);
             walker.walk(list, ends);
         } else {
             RayTreeWalker walker(tracer, limits, st);

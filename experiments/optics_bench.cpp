@@ -82,7 +82,9 @@ DropStudy drop_study(bool quick, int threads) {
             bin.closed_p = 0.5 * c.p[k];
             cls.total += S0;
             cls.max_bin_error = std::fmax(cls.max_bin_error, std::abs(bin.measured - bin.closed));
-            cls.max_bin_sigma = std::fmax(cls.max_bin_sigma, std::sqrt(std::fmax(bin.closed, 0.0) / static_cast<double>(d.photons)));
+            if (bin.closed > 0)
+                cls.max_z = std::fmax(cls.max_z, std::abs(bin.measured - bin.closed) /
+                                                     std::sqrt(bin.closed / static_cast<double>(d.photons)));
             d.bins.push_back(bin);
         }
         d.classes.push_back(cls);

@@ -33,7 +33,9 @@ struct DropClass {
     int cls = 0;
     double total = 0, total_closed = 0;  // fraction of the beam
     double max_bin_error = 0;            // max |measured − closed| over the bins
-    double max_bin_sigma = 0;            // the largest bin's statistical error (√(bin · ε̄ / N))
+    // The largest |measured − closed| / σ over the bins, σ = √(closed / N) (an upper bound of
+    // a bin's statistical error: each photon brings it at most its whole power).
+    double max_z = 0;
 };
 struct DropStudy {
     double n = 1.333;

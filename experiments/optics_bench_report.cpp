@@ -68,10 +68,10 @@ void write(const Result& r, const std::string& dir) {
                   g(b.measured_p, 10), g(b.closed, 10), g(b.closed_s, 10), g(b.closed_p, 10)});
     write_csv(path("drop.csv"), drop);
     Csv drop_classes;
-    drop_classes.header = {"class", "path", "measured", "closed form", "difference", "max bin difference", "bin sigma (max)"};
+    drop_classes.header = {"class", "path", "measured", "closed form", "difference", "max bin difference", "max bin z-score"};
     for (const DropClass& c : r.drop.classes)
         drop_classes.add({std::to_string(c.cls), class_name(c.cls), g(c.total, 7), g(c.total_closed, 7),
-                          g(c.total - c.total_closed, 3), g(c.max_bin_error, 3), g(c.max_bin_sigma, 3)});
+                          g(c.total - c.total_closed, 3), g(c.max_bin_error, 3), g(c.max_z, 3)});
     write_csv(path("drop_classes.csv"), drop_classes);
     write_far_field(dir + "/drop_far_field", r.drop.far_field, "water drop in a beam, 550 nm");
     write_text_atomic(path("drop.json"), r.drop.scene.dump(2) + "\n");
@@ -110,6 +110,7 @@ void write(const Result& r, const std::string& dir) {
        << r.drop.photons << " photons, 1° bins of scattering angle, depth 40, threshold 1e-9 (dropped: "
        << g(r.drop.dropped, 3) << " of the beam); " << g(r.drop.seconds, 3)
        << " s. Closed form: van de Hulst's geometric optics, ε₀ = R, ε_p = (1 − R)² R^(p−1) per polarisation. "
+          "A z-score is a bin's difference over σ = √(closed / N), an upper bound of its statistical error. "
           "Figure: drop.png; the detector's own files in drop_far_field/.\n\n"
        << drop_classes.markdown() << "\n";
     md << "## 2. Rainbow angles against wavelength (dispersive water)\n\n"

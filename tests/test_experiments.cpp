@@ -16,6 +16,7 @@
 #include "experiments/common.h"
 #include "experiments/experiment.h"
 #include "experiments/op_count.h"
+#include "experiments/optics_bench.h"
 #include "experiments/plot.h"
 #include "experiments/polarisation.h"
 #include "experiments/rtiow.h"
@@ -360,5 +361,36 @@ TEST_CASE("Polarisation driver (quick): sphere DoP per path equals the closed fo
     CHECK(r.analyser.deviations_at_zeros);
     CHECK(r.analyser.dolp_max_object > 0);
     CHECK(read_text(d / "summary.md").find("## 3. The diamond through a linear analyser") != std::string::npos);
+    fs::remove_all(d);
+}
+
+TEST_CASE("optics-bench (quick): the far-field detector agrees with the closed forms of a drop, a rainbow, a prism "
+          "and a slab", "[experiments][optics-bench]") {
+    namespace ob = refract::experiments::optics_bench;
+    ExperimentOptions opt;
+    opt.quick = true;
+    opt.threads = 2;
+    const ob::Result r = ob::compute(opt);
+    // 1. Each van de Hulst class's share of the beam, against geometric optics (200 000
+    //    photons: σ ≈ 3e-4 for the largest class).
+    REQUIRE(r.drop.classes.size() == 4);
+    for (const auto& c : r.drop.classes) {
+        CHECK(c.total == Approx(c.total_closed).margin(1.5e-3));
+        CHECK(c.max_z < 5.0);
+    }
+    CHECK(r.drop.classes[0].total_closed == Approx(0.0664058).margin(1e-6));
+    // 2. Rainbow angles within a bin (0.05°) of Descartes' at every wavelength, red outside.
+    CHECK(r.rainbow.max_error < 0.05);
+    CHECK(r.rainbow.rows.front().primary > r.rainbow.rows.back().primary);  // violet deviated most
+    // 3. Prism deviation within half a 0.01° bin.
+    CHECK(r.prism.max_error < 0.0051);
+    // 4. Slab transmittance, s and p, all internal reflections: to the threshold's truncation.
+    CHECK(r.slab.max_error < 1e-7);
+    const fs::path d = fs::temp_directory_path() / ("refract-test-" + std::to_string(::getpid()) + "-optics-bench");
+    fs::remove_all(d);
+    ob::write(r, d.string());
+    for (const char* f : {"drop.csv", "drop_classes.csv", "rainbow.csv", "prism.csv", "slab.csv", "summary.md",
+                          "drop_far_field/far_field.exr", "drop_far_field/far_field.csv"})
+        CHECK(fs::file_size(d / f) > 0);
     fs::remove_all(d);
 }

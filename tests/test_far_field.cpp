@@ -194,3 +194,23 @@ TEST_CASE("A light's spectrum becomes the scene's light spectrum", "[light]") {
     CHECK(s.settings.spectral.light.kind == spectrum::Illuminant::Blackbody);
     CHECK(s.settings.spectral.light.temperature_K == 5778);
 }
+
+TEST_CASE("Environment light as an emitter: a constant sky seen through an index-1 sphere is the same from every "
+          "direction", "[far-field]") {
+    json j = drop_scene(1.0);
+    j["lights"] = json::array();
+    j["background"] = {{"type", "environment"}, {"color", {1, 1, 1}}, {"scale", 2}};
+    const Scene s = parse_scene(j, "sky.json");
+    FarFieldSettings set;
+    set.azimuth_bins = 8;
+    set.polar_bins = 4;
+    set.photons = 100000;
+    const FarFieldResult r = far_field(s, set, 2);
+    // Photons cross the disk of radius R' = 1.01 R + 1e-6 across their direction: the
+    // sphere takes (R/R')² of them; the power emitted is L · πR'² · 4π.
+    const double Rp = 1.01 + 1e-6, hit = 1.0 / (Rp * Rp);
+    CHECK(r.emitted_power == Approx(2.0 * M_PI * Rp * Rp * 4.0 * M_PI).epsilon(1e-12));
+    CHECK(class_total(r, 1) == Approx(hit).margin(2e-3));  // binomial: σ ≈ 4.4e-4
+    CHECK(class_total(r, 1) + r.unscattered[0] == Approx(1.0).margin(1e-12));
+    for (int b = 0; b < r.bins; ++b) CHECK(r.at(0, 1, 0, b) == Approx(hit / 32).epsilon(0.06));  // σ ≈ 2 %
+}

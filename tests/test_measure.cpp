@@ -56,3 +56,34 @@ TEST_CASE("Line profile: the values along a line of pixels, outside pixels refus
     for (int k = 0; k < 5; ++k) CHECK(v[static_cast<size_t>(k)].x() == k);
     CHECK_THROWS_WITH(values_at(img, {{5, 0}}), Catch::Contains("(5, 0)"));
 }
+
+TEST_CASE("Angle histogram of a far-field map: the power is kept, and about the opposite axis the bins mirror",
+          "[measure][far-field]") {
+    // A synthetic equal-area map (12 azimuth × 10 polar bins about +z) whose intensity
+    // grows with the row; each pixel spans 4π/120 sr.
+    Channels map;
+    map.width = 12;
+    map.height = 10;
+    map.names = {"total"};
+    for (int j = 0; j < 10; ++j)
+        for (int i = 0; i < 12; ++i) map.data.push_back(1.0 + j);
+    map.attributes = {{"refract:far_field", "sphere"}, {"refract:far_field_axis", "0 0 1"},
+                      {"refract:far_field_reference", "1 0 0"}};
+    double total = 0;
+    for (double v : map.data) total += v * 4 * M_PI / 120;
+    const auto up = angle_histogram(map, "map.exr", 7), down = angle_histogram(map, "map.exr", 7, Vec3(0, 0, -1));
+    double sum = 0;
+    for (size_t b = 0; b < up.size(); ++b) {
+        sum += up[b].power[0];
+        CHECK(up[b].power[0] == Approx(down[up.size() - 1 - b].power[0]).epsilon(1e-12));
+        CHECK(up[b].intensity[0] == Approx(up[b].power[0] / up[b].solid_angle).epsilon(1e-12));
+    }
+    CHECK(sum == Approx(total).epsilon(1e-12));
+    // About its own axis, whole rows land in a bin: row centres at θ = acos(0.9) = 25.8° and
+    // acos(0.7) = 45.6° in the second bin (25.7°–51.4°), none in the first.
+    CHECK(up[0].pixels == 0);
+    CHECK(up[1].pixels == 24);
+    CHECK(up[1].power[0] == Approx((1.0 + 2.0) * 12 * 4 * M_PI / 120).epsilon(1e-12));
+    map.attributes[0].second = "axis";
+    CHECK_THROWS_WITH(angle_histogram(map, "map.exr", 9), Catch::Contains("map.exr") && Catch::Contains("sphere"));
+}
