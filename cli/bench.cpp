@@ -103,7 +103,7 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
         "bench", "Time the 1998 diamond (light + eye pass) and POV-Ray 3.7 on the matching scene, as ratios");
     sub->add_option("--width", a->width, "Image width (640)");
     sub->add_option("--height", a->height, "Image height (480)");
-    sub->add_option("--threads", a->threads, "Threads for refract and POV-Ray (+WT), 2");
+    sub->add_option("--threads", a->threads, "Threads for refract and POV-Ray (+WT), 2")->check(refract::cli::thread_range(1));
     sub->add_option("--samples", a->samples, "POV-Ray dispersion_samples (31 = 400-700 nm every 10 nm)");
     sub->add_option("--photons", a->photons, "Light-pass photons (30000)");
     sub->add_option("--povray", a->povray, "POV-Ray executable");

@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/threads.h"
+
 namespace refract::cli {
 
 struct Registrar {
@@ -18,6 +20,9 @@ struct Entry {
     std::function<void(CLI::App&)> add;
 };
 std::vector<Entry>& registry();
+
+// Worker threads: --threads N takes 0 (all cores) to kMaxThreads (core/threads.h).
+inline CLI::Range thread_range(int min = 0) { return CLI::Range(min, refract::kMaxThreads); }
 
 // True when stderr is a terminal (progress bars only then).
 bool stderr_is_terminal();

@@ -20,7 +20,7 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
     auto* sub = app.add_subcommand("experiment", help);
     sub->add_option("name", a->name, "Experiment name (--list shows them)");
     sub->add_option("-o,--output", a->out, "Output directory");
-    sub->add_option("--threads", a->threads, "Worker threads (0: all cores)");
+    sub->add_option("--threads", a->threads, "Worker threads (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quick", a->quick, "Smaller images and fewer samples (smoke runs)");
     sub->add_flag("--list", a->list, "List the experiments");
     sub->callback([a] {

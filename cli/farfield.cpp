@@ -42,7 +42,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
                     "Wavelengths in nm (default: the scene's sampling when a material is dispersive or absorbing, else 550)");
     sub->add_option("--seed", a->seed, "Random seed (7)");
     sub->add_option("--threads", a->threads, "Worker threads (0: all cores); the result does not depend on it")
-        ->check(CLI::Range(0, 1024));
+        ->check(refract::cli::thread_range());
     sub->add_flag("--no-plot", a->no_plot, "Skip the gnuplot figure");
     sub->callback([a] {
         using namespace refract;

@@ -33,8 +33,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);
-        return code == 0 ? 0 : 2;
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::cerr << "refract: " << e.what() << "\n";   // one line, as every other error
+        return 2;
     } catch (const refract::InputError& e) {
         std::cerr << "refract: " << e.what() << "\n";
         return 2;

@@ -24,7 +24,8 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     auto* sub = app.add_subcommand("render", "Render a scene file to an image (.exr linear, .png sRGB)");
     sub->add_option("scene", args->scene, "Scene file (JSON, see docs/scene-format.md)")->required();
     sub->add_option("-o,--output", args->output, "Output image; the extension picks the format")->required();
-    sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it");
+    sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it")
+        ->check(refract::cli::thread_range());
     sub->add_flag("--stats", args->stats, "Print ray, tree and list counters");
     sub->add_flag("--linear16", args->linear16, "PNG output as 16-bit linear instead of 8-bit sRGB");
     sub->add_flag("--spectral-channels", args->spectral,

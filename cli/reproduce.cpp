@@ -123,7 +123,7 @@ refract::cli::Registrar reg{90, [](CLI::App& app) {
     auto* sub = app.add_subcommand(
         "reproduce", "Run every experiment and the validation suite into OUT, with OUT/index.html showing them");
     sub->add_option("-o,--output", a->out, "Output directory (default: out)");
-    sub->add_option("--threads", a->threads, "Worker threads (0: all cores)");
+    sub->add_option("--threads", a->threads, "Worker threads (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quick", a->quick, "Small images and few samples (smoke run)");
     sub->add_option("--scenes", a->scenes, "Validation scenes directory (default: scenes/validation)");
     sub->add_flag("--skip-validation", a->skip_validation, "Do not run the validation suite");

@@ -36,7 +36,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_option("cases", args->cases, "Cases to run (default: all in the scenes directory)");
     sub->add_option("-o,--output", args->out_dir, "Report directory (report.md, report.html, images)");
     sub->add_option("--scenes", args->scenes, "Directory of NAME.json scenes and NAME.tol.json tolerances");
-    sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores for refract, 2 for POV-Ray)");
+    sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores for refract, 2 for POV-Ray)")
+        ->check(refract::cli::thread_range());
     sub->add_option("--povray", args->povray, "POV-Ray executable (name on PATH or path)");
     sub->add_flag("--list", args->list, "List the cases and exit");
     sub->add_option("--random", args->random,

@@ -13,6 +13,7 @@
 #include "core/integrators/spectral.h"
 #include "core/ray_tree.h"
 #include "geometry/error.h"
+#include "core/threads.h"
 
 namespace refract {
 
@@ -214,7 +215,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
 
     SceneTracer tracer(scene);
     const TreeLimits limits = ctx.limits(scene.settings);
-    const int nthreads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+    const int nthreads = worker_threads(threads);
     tbb::task_arena arena(nthreads);
     constexpr std::uint64_t kChunk = 4096;
     for (size_t w = 0; w < r.wavelengths.size(); ++w) {

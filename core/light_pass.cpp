@@ -10,6 +10,7 @@
 
 #include "core/emitters.h"
 #include "core/ray_tree.h"
+#include "core/threads.h"
 
 namespace refract {
 
@@ -151,7 +152,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     };
 
     constexpr std::uint64_t kChunk = 1024;
-    const int nthreads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+    const int nthreads = worker_threads(threads);
     tbb::task_arena arena(nthreads);
     for (const Emitter& em : emitters) {
         arena.execute([&] {

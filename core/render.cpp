@@ -22,6 +22,7 @@
 #include "core/random.h"
 #include "core/tracer.h"
 #include "geometry/error.h"
+#include "core/threads.h"
 
 namespace refract {
 
@@ -236,7 +237,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     check_channels(scene, opt);
     const auto t0 = std::chrono::steady_clock::now();
     SceneTracer tracer(scene);
-    const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
+    const int threads = worker_threads(opt.threads);
     std::optional<SpectralContext> ctx;
     std::shared_ptr<const IlluminationMaps> maps = opt.maps;
     RenderStats light_stats;

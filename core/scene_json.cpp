@@ -424,6 +424,8 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
 
 }  // namespace
 
+constexpr double kMaxLightColour = 1e30;
+
 // A light's own spectrum becomes the scene's (refract has one light spectrum per scene):
 // lights giving different spectra, or one differing from render.spectral.light, are refused.
 void apply_light_spectra(Scene& s, const JsonReader& root) {
@@ -512,6 +514,11 @@ Scene parse_scene(const json& j, const std::string& file) {
                 l.fail_at("type", "unknown light type '" + type + "' (point, directional, beam)");
             }
             light.color = l.vec3("color", Vec3(1, 1, 1));
+            // Colours scale every sum of the render: negative or astronomically large ones
+            // would give negative or infinite pixels.
+            for (int c = 0; c < 3; ++c)
+                if (!(light.color[c] >= 0 && light.color[c] <= kMaxLightColour))
+                    l.fail_at("color", "components must be in [0, 1e30]");
             if (l.has("polarisation")) light.polarisation = parse_polarisation_state(l.child("polarisation"), true);
             if (l.has("spectrum")) light.spectrum = spectrum::parse_light_spectrum(l.raw("spectrum"), file + ": " + l.path_of("spectrum"));
             s.lights.push_back(light);

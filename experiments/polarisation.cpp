@@ -20,6 +20,7 @@
 #include "experiments/common.h"
 #include "experiments/ohtsuka1998.h"
 #include "experiments/plot.h"
+#include "core/threads.h"
 
 namespace refract::experiments::polarisation {
 
@@ -70,7 +71,7 @@ std::vector<double> depth_walk(const Scene& scene, const TreeLimits& limits, int
             walker.walk(list, ends);
         }
     };
-    tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+    tbb::task_arena arena(worker_threads(threads));
     arena.execute([&] { tbb::parallel_for(0, H, body); });
     std::vector<double> sum;  // rows in order: the same sums whatever the thread count
     for (const auto& r : rows) {

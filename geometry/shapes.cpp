@@ -17,9 +17,10 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
     if (disc < 0) return std::nullopt;
     const double sq = std::sqrt(disc);
     double t = -b - sq;
-    if (t <= t_min || t >= t_max) {
+    // Written so that a NaN t (a sphere at 1e200: inf − inf) is never a hit.
+    if (!(t > t_min && t < t_max)) {
         t = -b + sq;
-        if (t <= t_min || t >= t_max) return std::nullopt;
+        if (!(t > t_min && t < t_max)) return std::nullopt;
     }
     Hit h;
     h.t = t;
@@ -32,7 +33,7 @@ std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double 
     const double denom = p.normal.dot(r.dir);
     if (denom == 0) return std::nullopt;
     const double t = (p.offset - p.normal.dot(r.origin)) / denom;
-    if (t <= t_min || t >= t_max) return std::nullopt;
+    if (!(t > t_min && t < t_max)) return std::nullopt;  // NaN is no hit
     return Hit{t, r.at(t), p.normal, -1};
 }
 
@@ -56,7 +57,7 @@ std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, 
         const double v = r.dir.dot(qv) * inv;
         if (v < 0 || u + v > 1) continue;
         const double t = e2.dot(qv) * inv;
-        if (t <= t_min || t >= t_best) continue;
+        if (!(t > t_min && t < t_best)) continue;  // NaN is no hit
         t_best = t;
         best = Hit{t, r.at(t), e1.cross(e2).normalized(), static_cast<int>(k)};
     }

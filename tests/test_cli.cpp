@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -73,5 +74,28 @@ TEST_CASE("refract render writes the image and prints the counters", "[cli]") {
     const Run r = run("render " + (dir / "s.json").string() + " -o " + (dir / "s.exr").string() + " --stats", dir);
     CHECK(r.code == 0);
     CHECK(fs::exists(dir / "s.exr"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("Resource limits: --threads outside [0, 1024] is refused with exit 2 in every subcommand, writing nothing",
+          "[cli][errors][limits]") {
+    const fs::path dir = fs::temp_directory_path() / ("refract-cli-threads-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}],
+        "lights": [{"type": "beam", "position": [0,0,-3], "direction": [0,0,1], "radius": 1}]})";
+    const std::string scene = (dir / "s.json").string(), out = (dir / "o.png").string();
+    for (const std::string& args :
+         {"render " + scene + " -o " + out + " --threads 70000", "render " + scene + " -o " + out + " --threads -1",
+          "farfield " + scene + " -o " + (dir / "ff").string() + " --threads 70000",
+          "experiment optics-bench -o " + (dir / "ob").string() + " --threads -2"}) {
+        const Run r = run(args, dir);
+        CHECK(r.code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find("threads") != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(out));
+    CHECK_FALSE(fs::exists(dir / "ff"));
     fs::remove_all(dir);
 }

@@ -214,3 +214,20 @@ TEST_CASE("Environment light as an emitter: a constant sky seen through an index
     CHECK(class_total(r, 1) + r.unscattered[0] == Approx(1.0).margin(1e-12));
     for (int b = 0; b < r.bins; ++b) CHECK(r.at(0, 1, 0, b) == Approx(hit / 32).epsilon(0.06));  // σ ≈ 2 %
 }
+
+TEST_CASE("No NaN from finite input: a sphere at 1e200 is no hit, and a light colour out of range is refused",
+          "[far-field][limits]") {
+    json j = drop_scene(1.5);
+    j["objects"][0]["center"] = {0, 0, 1e200};
+    const Scene far = parse_scene(j, "far.json");
+    const FarFieldResult r = far_field(far, axis_bins(10, 1000), 1);
+    CHECK(r.unscattered[0] == Approx(1.0).margin(1e-12));  // the beam meets nothing
+    for (double v : r.power) CHECK(v == 0);
+    for (const double bad : {-1.0, 1e308}) {
+        json k = drop_scene(1.5);
+        k["lights"][0]["color"] = {1, bad, 1};
+        CHECK_THROWS_WITH(parse_scene(k, "colour.json"), Catch::Contains("/lights/0/color"));
+    }
+    const Scene s = parse_scene(drop_scene(1.5), "drop.json");
+    CHECK_THROWS_WITH(far_field(s, axis_bins(10, 10), 70000), Catch::Contains("--threads"));
+}
