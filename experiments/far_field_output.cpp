@@ -169,14 +169,17 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldR
             fig.add(std::move(row));
         }
         write_csv(dir + "/far_field_plot.csv", fig);
-        std::string body = "set title \"" + title + "\"\nset xlabel \"angle from the axis (degrees)\"\n"
-                           "set ylabel \"intensity (fraction of the emitted power per sr)\"\nset logscale y\n"
+        std::string body = "set title \"" + title + "\" noenhanced\nset xlabel \"angle from the axis (degrees)\"\n"
+                           "set ylabel \"intensity (fraction of the emitted power per sr)\"\nset logscale y\nset format y \"10^{%L}\"\n"
                            "set xrange [0:180]\nset key outside right\nset datafile separator \",\"\nplot ";
         for (int c = 0; c < r.classes; ++c)
             body += std::string(c ? ", " : "") + "\"far_field_plot.csv\" using 1:($" + std::to_string(c + 2) + " > 0 ? $" +
                     std::to_string(c + 2) + " : NaN) skip 1 with lines title \"" + r.class_name(c) + "\"";
         body += "\n";
-        gnuplot_figure(dir, "far_field", body);
+        FigureSize size;  // room for the classes' key beside the plot
+        size.width_px = 1040;
+        size.width_in = 7.8;
+        gnuplot_figure(dir, "far_field", body, size);
         written.push_back("far_field.png");
     }
     return written;

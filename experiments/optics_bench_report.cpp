@@ -23,7 +23,7 @@ const char* class_name(int p) {
 void figures(const std::string& dir) {
     if (!gnuplot_available()) return;
     std::ostringstream d;
-    d << "set datafile separator ','\nset logscale y\nset xrange [0:180]\nset yrange [1e-6:*]\n"
+    d << "set datafile separator ','\nset logscale y\nset format y '10^{%L}'\nset xrange [0:180]\nset yrange [1e-6:*]\n"
          "set xlabel 'scattering angle (degrees)'\nset ylabel 'fraction of the beam per degree'\n"
          "set key top left\nset title 'Water drop (n = 1.333) in a beam: measured (points) and closed form (lines)'\n"
          "plot ";
