@@ -35,6 +35,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
                   "Also write IMAGE.lost.exr: per pixel the weight dropped by the depth limit, the "
                   "reflection/transmission limits and the threshold");
     sub->callback([args] {
+        refract::check_image_path(args->output);  // before the work, not after it
         const refract::Scene scene = refract::load_scene(args->scene);
         refract::RenderOptions opt;
         opt.threads = args->threads;

@@ -57,6 +57,9 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
                 const double sin_max = R / d;
                 em.cos_max = std::sqrt(1.0 - sin_max * sin_max);
                 em.dref = (centre - L.position).norm();
+                // It cancels (the power grows with dref², the deposit's falloff divides by
+                // it): any positive value does, when the light sits at the targets' centre.
+                if (!(em.dref > 0)) em.dref = 1.0;
                 em.origin = L.position;
                 em.axis = to / d;
                 const double omega = 2.0 * M_PI * (1.0 - em.cos_max);

@@ -31,14 +31,28 @@ void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, cons
 
 }  // namespace
 
-void write_image(const std::string& path, const Image& img, const WriteOptions& opt) {
-    if (img.width <= 0 || img.height <= 0) throw InputError(path + ": cannot write an empty image");
+void check_image_path(const std::string& path) {
     const std::string ext = lower_extension(path);
-    const bool linear_float = ext == ".exr" || ext == ".hdr" || ext == ".pfm" || ext == ".tif" || ext == ".tiff";
+    const bool linear_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
     const bool encoded = ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".bmp";
     if (!linear_float && !encoded)
         throw InputError(path + ": unknown image extension '" + ext +
-                         "' (use .exr, .hdr, .pfm, .tif for linear, .png, .jpg, .ppm for sRGB)");
+                         "' (use .exr, .hdr, .tif for linear, .png, .jpg, .ppm, .bmp for sRGB)");
+    if (!OIIO::ImageOutput::create(path))
+        throw InputError(path + ": this OpenImageIO has no writer for '" + ext + "' files");
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not an image file");
+    const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+    if (!fs::is_directory(dir, ec)) throw InputError(path + ": the directory " + dir.string() + " does not exist");
+    if (::access(dir.c_str(), W_OK) != 0) throw InputError(path + ": the directory " + dir.string() + " is not writable");
+}
+
+void write_image(const std::string& path, const Image& img, const WriteOptions& opt) {
+    if (img.width <= 0 || img.height <= 0) throw InputError(path + ": cannot write an empty image");
+    check_image_path(path);
+    const std::string ext = lower_extension(path);
+    const bool linear_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
     const size_t n = img.rgb.size();
     OIIO::ImageSpec spec;
     std::vector<float> fbuf;
@@ -72,6 +86,7 @@ void write_channels(const std::string& path, int width, int height, const std::v
                     const std::vector<double>& data,
                     const std::vector<std::pair<std::string, std::string>>& attributes) {
     if (lower_extension(path) != ".exr") throw InputError(path + ": named channels need an .exr file");
+    check_image_path(path);
     const size_t n = static_cast<size_t>(width) * height * names.size();
     if (width <= 0 || height <= 0 || names.empty() || data.size() != n)
         throw InputError(path + ": channel data do not match the image size");

@@ -1,7 +1,7 @@
 #pragma once
 // Linear RGB images in double precision; files go through OpenImageIO. The format is
-// chosen by the extension: .exr (linear, float), .png/.jpg/.tif... (sRGB-encoded 8-bit,
-// or 16-bit for .png with `linear16`), .hdr/.pfm (linear).
+// chosen by the extension: .exr/.hdr/.tif (linear, float), .png/.jpg/.ppm/.bmp (sRGB-encoded 8-bit,
+// or 16-bit linear for .png with `linear16`).
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +34,11 @@ struct WriteOptions {
 // Writes to a temporary name beside `path`, then renames: never a half-written file.
 // Throws InputError naming the path on failure (unknown extension, unwritable).
 void write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
+
+// Checks, before any work, that an image can be written at `path`: a known extension this
+// OpenImageIO writes, an existing writable directory, not a directory itself. InputError
+// naming the path otherwise. write_image and write_channels check it too.
+void check_image_path(const std::string& path);
 
 // A float OpenEXR file with the given channel names; `data` interleaved, row-major
 // (names.size() values per pixel). Atomic like write_image.

@@ -169,8 +169,10 @@ void check_channels(const Scene& scene, const RenderOptions& opt) {
                              std::to_string(static_cast<long long>(per_pixel * pixels)) +
                              " values (at most 2^28): use a smaller image");
     };
+    // The image (and the lost-energy image, 3 values too). The scene reader stops at 2^26
+    // pixels; this bounds scenes built in code as well.
+    bound(3, "/camera: the image");
     if (s.polarisation == PolarisationModel::Exact) bound(14, "/render/polarisation: the Stokes, DoLP and AoLP images");
-    if (opt.lost_energy) bound(3, "the lost-energy image");
     if (opt.spectral_channels) {
         if (!s.spectral.enabled || s.compat == Compat::PovRay || s.polarisation != PolarisationModel::Natural)
             throw InputError(f + ": spectral channels need the spectral eye pass in the physical mode with natural light");
@@ -324,6 +326,14 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     for (const auto& st : tile_stats) result.stats.merge(st);
     result.stats.merge(light_stats);
     result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Finite input gives finite pixels (scene validation refuses what would overflow): a
+    // non-finite one is refract's own error, reported with the pixel and never written.
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i)
+            if (!result.image.at(i, j).allFinite())
+                throw std::runtime_error("internal error: " + (scene.source.empty() ? std::string("scene") : scene.source) +
+                                         ": pixel (" + std::to_string(i) + ", " + std::to_string(j) +
+                                         ") is not finite; please report it with the scene");
     return result;
 }
 

@@ -14,6 +14,8 @@
 namespace refract {
 namespace {
 
+constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-format.md)
+
 using nlohmann::json;
 
 Camera parse_camera(const JsonReader& r) {
@@ -28,6 +30,9 @@ Camera parse_camera(const JsonReader& r) {
     c.sky = r.vec3("sky", c.sky);
     c.width = r.integer("width", c.width, 1, 1 << 15);
     c.height = r.integer("height", c.height, 1, 1 << 15);
+    if (static_cast<long long>(c.width) * c.height > kMaxPixels)
+        r.fail_at("height", std::to_string(c.width) + " × " + std::to_string(c.height) +
+                                " pixels exceed the limit of 2^26 (67 108 864) pixels");
     if ((c.look_at - c.location).norm() == 0) r.fail_at("look_at", "must differ from location");
     if (c.sky.cross(c.look_at - c.location).norm() == 0) r.fail_at("sky", "must not be parallel to the view direction");
     if (r.has("angle") && r.has("vfov")) r.fail_at("vfov", "give either angle (horizontal) or vfov (vertical)");

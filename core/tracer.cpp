@@ -48,20 +48,23 @@ Vec3 SceneTracer::pigment(const Pigment& m, const Vec3& p) const {
     if (!m.checker) return m.color;
     // 3D checker (POV-Ray `checker`): parity of the sum of the cell indices. A small
     // offset keeps a surface lying on a cell boundary (a floor at y = 0) on one side.
+    // Parities are taken on the doubles (no integer conversion to overflow on far hits or
+    // tiny cells): odd(v) for a cell index v = floor(...).
+    const auto odd = [](double v) { return std::fmod(v, 2.0) != 0.0; };
     const double s = m.checker->size;
-    long long k;
+    bool k;
     if (scene_.settings.compat == Compat::PovRay) {
         // POV-Ray `checker ... scale s` (pattern.cpp checker_pattern): the point is taken
         // to pattern space by the inverse transform, a product with 1/s, then floor(v + 1e-10).
         const Vec3 q = p * (1.0 / s);
-        k = static_cast<long long>(std::floor(q.x() + 1e-10)) + static_cast<long long>(std::floor(q.y() + 1e-10)) +
-            static_cast<long long>(std::floor(q.z() + 1e-10));
+        k = odd(std::floor(q.x() + 1e-10)) != odd(std::floor(q.y() + 1e-10));
+        k = k != odd(std::floor(q.z() + 1e-10));
     } else {
         const double e = 1e-9;
-        k = static_cast<long long>(std::floor(p.x() / s + e)) + static_cast<long long>(std::floor(p.y() / s + e)) +
-            static_cast<long long>(std::floor(p.z() / s + e));
+        k = odd(std::floor(p.x() / s + e)) != odd(std::floor(p.y() / s + e));
+        k = k != odd(std::floor(p.z() / s + e));
     }
-    return (k & 1) ? m.checker->color2 : m.color;
+    return k ? m.checker->color2 : m.color;
 }
 
 Vec3 SceneTracer::light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const {

@@ -99,3 +99,34 @@ TEST_CASE("Resource limits: --threads outside [0, 1024] is refused with exit 2 i
     CHECK_FALSE(fs::exists(dir / "ff"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("Output paths are checked before the work: a missing directory, a directory, a format without a writer",
+          "[cli][errors][limits]") {
+    const fs::path dir = fs::temp_directory_path() / ("refract-cli-out-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}]})";
+    const std::string scene = (dir / "s.json").string();
+    const std::pair<std::string, std::string> cases[] = {
+        {(dir / "nodir" / "out.exr").string(), "does not exist"},
+        {(dir / "sub").string() + "/", "unknown image extension"},
+        {(dir / "sub.exr").string(), ""},  // fine: the control
+        {(dir / "out.pfm").string(), "pfm"},
+    };
+    fs::create_directories(dir / "adir.exr");
+    for (const auto& [out, says] : cases) {
+        const Run r = run("render " + scene + " -o " + out, dir);
+        if (says.empty()) {
+            CHECK(r.code == 0);
+            continue;
+        }
+        CHECK(r.code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find(says) != std::string::npos);
+    }
+    const Run d = run("render " + scene + " -o " + (dir / "adir.exr").string(), dir);
+    CHECK(d.code == 2);
+    CHECK(d.err.find("is a directory") != std::string::npos);
+    fs::remove_all(dir);
+}

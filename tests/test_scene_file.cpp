@@ -6,7 +6,10 @@
 #include <fstream>
 #include <limits>
 
+#include <cmath>
+
 #include "core/render.h"
+#include "core/spectrum/dispersion.h"
 #include "core/scene_json.h"
 #include "geometry/error.h"
 
@@ -95,4 +98,42 @@ TEST_CASE("A failed image write leaves no file behind", "[image][errors]") {
     CHECK(back.width == 4);
     CHECK(back.height == 3);
     std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("Hardening: a Sellmeier pole between whole nanometres, an image over 2^26 pixels, a light at the targets' "
+          "centre", "[scene][limits]") {
+    using nlohmann::json;
+    // n² = 1 + B λ²/(λ² − C) has its pole at λ = √C = 550.5 nm: sampled every nanometre, it
+    // was missed.
+    const double C = 0.5505 * 0.5505;
+    CHECK_THROWS_WITH(spectrum::parse_dispersion(json{{"model", "sellmeier"}, {"B", {1.0}}, {"C", {C}}}, "s.json: /d"),
+                      Catch::Contains("/d/C") && Catch::Contains("550.5"));
+    json big = {{"camera", {{"width", 32768}, {"height", 32768}}}, {"objects", json::array()}};
+    CHECK_THROWS_WITH(parse_scene(big, "big.json"), Catch::Contains("/camera/height") && Catch::Contains("2^26"));
+    // A point light midway between two glass spheres: the targets' centre, where the light
+    // pass's reference distance was 0 (0 · ∞ photons).
+    json two = {{"camera", {{"location", {0, 6, -6}}, {"look_at", {0, 0, 0}}, {"width", 24}, {"height", 16}}},
+                {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.5}}}, {"floor", {{"type", "diffuse"}}}}},
+                {"objects", {{{"type", "sphere"}, {"center", {-2, 1, 0}}, {"radius", 0.8}, {"material", "glass"}},
+                             {{"type", "sphere"}, {"center", {2, 1, 0}}, {"radius", 0.8}, {"material", "glass"}},
+                             {{"type", "plane"}, {"normal", {0, 1, 0}}, {"offset", 0}, {"material", "floor"}}}},
+                {"lights", {{{"position", {0, 1, 0}}}}},
+                {"render", {{"light_pass", {{"photons", 20000}}}}}};
+    RenderOptions o;
+    o.threads = 2;
+    const RenderResult r = render(parse_scene(two, "two.json"), o);
+    double sum = 0;
+    for (double v : r.image.rgb) sum += v;
+    CHECK(std::isfinite(sum));
+    CHECK(sum > 0);
+}
+
+TEST_CASE("A non-finite pixel is reported as an internal error naming the pixel, never returned", "[scene][limits]") {
+    using nlohmann::json;
+    json j = {{"camera", {{"location", {0, 0, -4}}, {"width", 4}, {"height", 3}}},
+              {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", {{"type", "diffuse"}}}}}},
+              {"lights", {{{"position", {0, 0, -5}}}}}};
+    Scene s = parse_scene(j, "inf.json");
+    s.lights[0].color = Vec3(std::numeric_limits<double>::infinity(), 1, 1);  // past the reader's checks
+    CHECK_THROWS_WITH(render(s), Catch::Contains("internal error") && Catch::Contains("pixel ("));
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 
@@ -450,4 +451,19 @@ TEST_CASE("refract (compat povray) and POV-Ray 3.7 agree on the validation scene
     for (const CaseResult& c : r.cases)
         for (const Metric& m : c.metrics)
             if (m.name == "compat vs povray: rmse") CHECK(m.value < 2e-5);  // about the 16-bit output step
+}
+
+TEST_CASE("validate stays inside its output directory: a case named '..' or with a slash is refused",
+          "[validation][limits]") {
+    const fs::path dir = fs::temp_directory_path() / ("refract-case-names-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    { std::ofstream{dir / "good-case_1.5.json"} << "{}"; }
+    CHECK(list_cases(dir.string()) == std::vector<std::string>{"good-case_1.5"});
+    { std::ofstream{dir / "...json"} << "{}"; }  // the case ".."
+    CHECK_THROWS_WITH(list_cases(dir.string()), Contains("...json") && Contains("case names"));
+    for (const std::string bad : {"..", ".", "../x", "a/b", "", ".hidden", "tab\there"})
+        CHECK_THROWS_WITH(check_case_name(bad, "validate"), Contains("validate: case names"));
+    CHECK_NOTHROW(check_case_name("fig8-n1.333", "validate"));
+    fs::remove_all(dir);
 }

@@ -157,6 +157,18 @@ void finish(CaseResult& c) {
 
 }  // namespace
 
+void check_case_name(const std::string& name, const std::string& where) {
+    // A case writes into OUT/NAME: a name is one plain path component.
+    const bool plain = !name.empty() && name[0] != '.' && name.size() <= 200 &&
+                       std::all_of(name.begin(), name.end(), [](char ch) {
+                           return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+                                  ch == '.' || ch == '_' || ch == '-';
+                       });
+    if (!plain)
+        throw InputError(where + ": case names hold letters, digits, '.', '_' and '-' only, not first '.' "
+                                 "(at most 200 characters)");
+}
+
 std::vector<std::string> list_cases(const std::string& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw InputError(dir + ": no such scenes directory");
@@ -166,7 +178,10 @@ std::vector<std::string> list_cases(const std::string& dir) {
         const auto ends = [&](const std::string& suffix) {
             return file.size() > suffix.size() && file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0;
         };
-        if (e.is_regular_file() && ends(".json") && !ends(".tol.json")) names.push_back(file.substr(0, file.size() - 5));
+        if (e.is_regular_file() && ends(".json") && !ends(".tol.json")) {
+            names.push_back(file.substr(0, file.size() - 5));
+            check_case_name(names.back(), (fs::path(dir) / file).string());
+        }
     }
     if (ec) throw InputError(dir + ": cannot read scenes directory: " + ec.message());
     std::sort(names.begin(), names.end());
@@ -178,6 +193,7 @@ CaseResult run_case_inner(const std::string& name, const SuiteOptions& opt, std:
 }
 
 CaseResult run_case(const std::string& name, const SuiteOptions& opt, std::string* povray_version) {
+    check_case_name(name, "validation case");
     CaseResult c = run_case_inner(name, opt, povray_version);
     list_images(c, fs::path(opt.out_dir) / name, fs::path(opt.out_dir));
     return c;

@@ -60,8 +60,13 @@ struct SuiteResult {
     int passed = 0, failed = 0, skipped = 0;
 };
 
+// Refuses (InputError naming `where`) a case name that is not one plain path component:
+// letters, digits, '.', '_', '-', not starting with '.' (a case writes into OUT/NAME).
+void check_case_name(const std::string& name, const std::string& where);
+
 // Case names in `dir` (NAME.json files that are not NAME.tol.json), sorted.
-// Throws InputError when the directory cannot be read.
+// Throws InputError when the directory cannot be read or holds a case name
+// check_case_name refuses.
 std::vector<std::string> list_cases(const std::string& dir);
 
 // Runs one case, writing its images under out_dir/NAME/. Never throws for a problem

@@ -371,6 +371,14 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
 }
 
 void check_range(const Dispersion& d, const std::string& path) {
+    // A Sellmeier term's pole λ = √C lies between the whole nanometres sampled below.
+    if (const auto* s = std::get_if<SellmeierModel>(&d.model))
+        for (int k = 0; k < s->terms; ++k) {
+            const double pole = std::sqrt(std::fmax(s->C[static_cast<size_t>(k)], 0.0)) * 1000.0;  // C in µm²
+            if (pole >= 360.0 && pole <= 830.0)
+                throw InputError(path + "/C: term " + std::to_string(k + 1) + " has its pole at " + format_value(pole) +
+                                 " nm, inside 360–830 nm");
+        }
     for (int l = 360; l <= 830; ++l) {
         const double n = d.n(l);
         if (!std::isfinite(n) || !(n > 0.0))
