@@ -123,6 +123,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
             throw InputError("bench: --threads must be in [1, 256] (got " + std::to_string(a->threads) + ")");
         if (a->samples < 2 || a->samples > 1000)
             throw InputError("bench: --samples must be in [2, 1000] (got " + std::to_string(a->samples) + ")");
+        if (!a->no_povray && a->polarisation_pairs == 0 && validation::find_povray(a->povray).empty())
+            throw InputError("bench: POV-Ray executable '" + a->povray +
+                             "' not found (install POV-Ray 3.7, or time refract alone with --no-povray)");
         oh::SceneParams p;
         p.width = a->width;
         p.height = a->height;

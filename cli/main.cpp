@@ -21,6 +21,22 @@ Registrar::Registrar(int order, std::function<void(CLI::App&)> add) {
 
 bool stderr_is_terminal() { return isatty(STDERR_FILENO) != 0; }
 
+// An error message as one line of printable text: control characters (a field name's
+// newline or terminal escape echoed from a scene) are written as \xNN.
+std::string printable(const std::string& text) {
+    std::string out;
+    for (const unsigned char c : text) {
+        if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out;
+}
+
 }  // namespace refract::cli
 
 int main(int argc, char** argv) {
@@ -34,13 +50,13 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::cerr << "refract: " << e.what() << "\n";   // one line, as every other error
+        std::cerr << "refract: " << refract::cli::printable(e.what()) << "\n";  // one line, as every other error
         return 2;
     } catch (const refract::InputError& e) {
-        std::cerr << "refract: " << e.what() << "\n";
+        std::cerr << "refract: " << refract::cli::printable(e.what()) << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "refract: error: " << e.what() << "\n";
+        std::cerr << "refract: error: " << refract::cli::printable(e.what()) << "\n";
         return 1;
     }
     return 0;

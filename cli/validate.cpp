@@ -61,12 +61,20 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
                   "Only the caustic comparison: refract light pass vs POV-Ray photons, region means and a profile");
     sub->callback([args] {
         namespace v = refract::validation;
+        // POV-Ray is needed by every comparison: missing, it is bad input (exit 2), not a
+        // suite of skipped cases.
+        const auto need_povray = [&] {
+            if (v::find_povray(args->povray).empty())
+                throw refract::InputError("validate: POV-Ray executable '" + args->povray +
+                                          "' not found (install POV-Ray 3.7 or pass --povray PATH)");
+        };
         if (args->list) {
             for (const auto& n : v::list_cases(args->scenes)) std::cout << n << "\n";
             return;
         }
         if (args->caustics) {
             if (args->threads < 0) throw refract::InputError("validate: --threads must be >= 0");
+            need_povray();
             v::CausticOptions co;
             co.threads = args->threads;
             co.povray.executable = args->povray;
@@ -114,8 +122,7 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             ro.jobs = args->threads;
             ro.povray.executable = args->povray;
             ro.povray.timeout_seconds = args->timeout;
-            if (v::find_povray(ro.povray.executable).empty())
-                throw refract::InputError("validate: POV-Ray executable '" + ro.povray.executable + "' not found");
+            need_povray();
             const v::RandomResult r = v::run_random(ro, &std::cerr);
             std::cout << v::format_random(r);
             std::cout << "report: " << args->out_dir << "/report.md" << std::endl;
@@ -124,6 +131,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             return;
         }
         if (args->threads < 0) throw refract::InputError("validate: --threads must be >= 0");
+        for (const auto& name : args->cases) v::check_case_name(name, "validate");
+        need_povray();
         v::SuiteOptions opt;
         opt.scenes_dir = args->scenes;
         opt.out_dir = args->out_dir;

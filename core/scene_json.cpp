@@ -35,6 +35,12 @@ Camera parse_camera(const JsonReader& r) {
                                 " pixels exceed the limit of 2^26 (67 108 864) pixels");
     if ((c.look_at - c.location).norm() == 0) r.fail_at("look_at", "must differ from location");
     if (c.sky.cross(c.look_at - c.location).norm() == 0) r.fail_at("sky", "must not be parallel to the view direction");
+    // A field that does not apply to the camera's type is refused, not ignored.
+    if (c.type == Camera::Type::Perspective && r.has("ortho_height"))
+        r.fail_at("ortho_height", "applies to an orthographic camera only (this one is perspective)");
+    if (c.type == Camera::Type::Orthographic)
+        for (const char* k : {"angle", "vfov"})
+            if (r.has(k)) r.fail_at(k, "applies to a perspective camera only (this one is orthographic: use ortho_height)");
     if (r.has("angle") && r.has("vfov")) r.fail_at("vfov", "give either angle (horizontal) or vfov (vertical)");
     if (r.has("vfov")) {
         // RTIOW's vertical field of view, converted to POV-Ray's horizontal angle.

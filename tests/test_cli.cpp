@@ -130,3 +130,29 @@ TEST_CASE("Output paths are checked before the work: a missing directory, a dire
     CHECK(d.err.find("is a directory") != std::string::npos);
     fs::remove_all(dir);
 }
+
+TEST_CASE("Error contract: a field name's escape and newline are printed as \\xNN on one line; a missing povray "
+          "is bad input (exit 2) in validate and bench",
+          "[cli][errors][limits]") {
+    const fs::path dir = fs::temp_directory_path() / ("refract-cli-contract-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream{dir / "esc.json"} << "{\"camera\": {\"width\": 4, \"height\": 3, \"bad\\u001b[31m\\nkey\": 1}}";
+    const Run esc = run("render " + (dir / "esc.json").string() + " -o " + (dir / "o.png").string(), dir);
+    CHECK(esc.code == 2);
+    CHECK(count_lines(esc.err) == 1);
+    CHECK(esc.err.find('\x1b') == std::string::npos);
+    CHECK(esc.err.find("bad\\x1b[31m\\x0akey") != std::string::npos);
+    const Run val = run("validate fresnel-sphere -o " + (dir / "v").string() + " --povray refract-no-such-povray", dir);
+    CHECK(val.code == 2);
+    CHECK(count_lines(val.err) == 1);
+    CHECK(val.err.find("refract-no-such-povray") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "v"));
+    const Run bench = run("bench --povray refract-no-such-povray", dir);
+    CHECK(bench.code == 2);
+    CHECK(bench.err.find("not found") != std::string::npos);
+    const Run name = run("validate ../x -o " + (dir / "v").string(), dir);
+    CHECK(name.code == 2);
+    CHECK(name.err.find("case names") != std::string::npos);
+    fs::remove_all(dir);
+}

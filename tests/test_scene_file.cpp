@@ -137,3 +137,14 @@ TEST_CASE("A non-finite pixel is reported as an internal error naming the pixel,
     s.lights[0].color = Vec3(std::numeric_limits<double>::infinity(), 1, 1);  // past the reader's checks
     CHECK_THROWS_WITH(render(s), Catch::Contains("internal error") && Catch::Contains("pixel ("));
 }
+
+TEST_CASE("A camera field that does not apply to its type is refused, naming it", "[scene][limits]") {
+    using nlohmann::json;
+    json p = {{"camera", {{"width", 4}, {"height", 3}, {"ortho_height", 2}}}, {"objects", json::array()}};
+    CHECK_THROWS_WITH(parse_scene(p, "p.json"), Catch::Contains("/camera/ortho_height") && Catch::Contains("orthographic"));
+    json o = {{"camera", {{"type", "orthographic"}, {"width", 4}, {"height", 3}, {"angle", 40}}}, {"objects", json::array()}};
+    CHECK_THROWS_WITH(parse_scene(o, "o.json"), Catch::Contains("/camera/angle"));
+    o["camera"].erase("angle");
+    o["camera"]["ortho_height"] = 3;
+    CHECK(parse_scene(o, "o.json").camera.ortho_height == 3);
+}

@@ -184,7 +184,8 @@ TEST_CASE("POV-Ray export refuses what POV-Ray cannot express", "[validation]") 
                Contains("sphere { <0, 1, -3>, 4 inverse texture"));
     CHECK_THAT(export_pov(scene_from(with(g, R"("normal": [0, 1, 0], "offset": 0)", R"("normal": [0, -1, 0], "offset": 0)"))),
                Contains("plane { <0, -1, 0>, 0 inverse texture"));
-    CHECK_THAT(refusal(with(with(g, R"("camera": {)", R"("camera": {"type": "orthographic", "ortho_height": 6, )"),
+    CHECK_THAT(refusal(with(with(with(g, R"("camera": {)", R"("camera": {"type": "orthographic", "ortho_height": 6, )"),
+                                 R"("angle": 45, )", ""),
                             R"("location": [0, 1.5, -5])", R"("location": [0, 0.5, -5])")),
                Contains("orthographic image plane crosses"));
     // An index that is 1 in single precision, a mesh wound inside out.
