@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "experiments/common.h"
 #include "experiments/experiment.h"
 
 namespace {
@@ -31,7 +32,7 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
         }
         const auto& e = ex::find(a->name);
         if (a->out.empty()) a->out = "out/" + e.name;
-        std::filesystem::create_directories(a->out);
+        ex::ensure_dir(a->out);  // before the work: a bad -o is bad input
         e.run({a->out, a->threads, a->quick});
         std::cout << e.name << ": results in " << a->out << "\n";
     });

@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "core/far_field.h"
 #include "core/scene_json.h"
+#include "experiments/common.h"
 #include "experiments/far_field_output.h"
 #include "experiments/plot.h"
 #include "geometry/error.h"
@@ -47,6 +48,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
     sub->callback([a] {
         using namespace refract;
         const Scene scene = load_scene(a->scene);
+        experiments::ensure_dir(a->output);  // before the work
         FarFieldSettings s;
         s.binning = a->binning == "axis" ? FarFieldSettings::Binning::Axis : FarFieldSettings::Binning::Sphere;
         if (!a->axis.empty()) s.axis = Vec3(a->axis[0], a->axis[1], a->axis[2]);

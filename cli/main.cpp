@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "cli/commands.h"
+#include "geometry/atomic_file.h"
 #include "geometry/error.h"
 
 namespace refract::cli {
@@ -40,6 +41,7 @@ std::string printable(const std::string& text) {
 }  // namespace refract::cli
 
 int main(int argc, char** argv) {
+    refract::install_temp_cleanup();  // Ctrl-C or a kill leaves no temporary behind
     CLI::App app{"refract: a research toolkit for the physics of refraction in rendering"};
     app.require_subcommand(1);
     auto entries = refract::cli::registry();

@@ -8,6 +8,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "geometry/atomic_file.h"
 #include "geometry/error.h"
 
 namespace refract {
@@ -26,7 +27,7 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-// Writes to a temporary name beside `path`, then renames.
+// Writes through a TempFile beside `path` (geometry/atomic_file.h).
 void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* data);
 
 }  // namespace
@@ -101,25 +102,13 @@ void write_channels(const std::string& path, int width, int height, const std::v
 namespace {
 
 void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* data) {
-    const std::string ext = lower_extension(path);
-    // Temporary name keeps the extension so OpenImageIO picks the right writer.
-    const std::filesystem::path target(path);
-    const std::filesystem::path tmp =
-        target.parent_path() / (".tmp-" + target.stem().string() + "-" + std::to_string(::getpid()) + ext);
-    auto out = OIIO::ImageOutput::create(tmp.string());
+    // The temporary keeps the extension so that OpenImageIO picks the right writer.
+    TempFile tmp(path, true);
+    auto out = OIIO::ImageOutput::create(tmp.path());
     if (!out) throw InputError(path + ": no image writer for this extension");
-    const bool ok = out->open(tmp.string(), spec) && out->write_image(spec.format, data) && out->close();
-    if (!ok) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
+    if (!(out->open(tmp.path(), spec) && out->write_image(spec.format, data) && out->close()))
         throw InputError(path + ": cannot write image: " + out->geterror());
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, target, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw InputError(path + ": cannot write image: " + ec.message());
-    }
+    tmp.commit();
 }
 
 }  // namespace

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <unistd.h>
 
 #include "core/scene_json.h"
 #include "experiments/plot.h"
+#include "geometry/error.h"
 
 namespace refract::experiments {
 
@@ -103,7 +105,8 @@ void ensure_dir(const std::string& dir) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir))
-        throw std::runtime_error(dir + ": cannot create the output directory (" + ec.message() + ")");
+        throw InputError(dir + ": cannot create the output directory" + (ec ? " (" + ec.message() + ")" : std::string()));
+    if (::access(dir.c_str(), W_OK) != 0) throw InputError(dir + ": the output directory is not writable");
 }
 
 nlohmann::json vec(double x, double y, double z) { return nlohmann::json::array({x, y, z}); }

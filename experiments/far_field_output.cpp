@@ -1,3 +1,4 @@
+#include "experiments/common.h"
 #include "experiments/far_field_output.h"
 
 #include <cmath>
@@ -52,7 +53,7 @@ std::vector<double> theta_profile(const FarFieldResult& r, int w, int c, int s) 
 
 std::vector<std::string> write_far_field(const std::string& dir, const FarFieldResult& r, const std::string& title,
                                          const FarFieldFiles& opt) {
-    std::filesystem::create_directories(dir);
+    ensure_dir(dir);
     std::vector<std::string> written;
     const int nw = static_cast<int>(r.wavelengths.size());
     const auto edges = theta_edges_deg(r);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "experiments/common.h"
 #include "experiments/far_field_output.h"
 #include "experiments/optics_bench.h"
 #include "experiments/plot.h"
@@ -58,7 +59,7 @@ void figures(const std::string& dir) {
 
 void write(const Result& r, const std::string& dir) {
     namespace fs = std::filesystem;
-    fs::create_directories(dir);
+    ensure_dir(dir);
     const auto path = [&](const std::string& f) { return dir + "/" + f; };
     // 1. Drop.
     Csv drop;

@@ -17,6 +17,8 @@
 #include <unistd.h>
 #include <spawn.h>
 
+#include "geometry/atomic_file.h"
+
 extern char** environ;
 
 namespace refract::experiments {
@@ -26,8 +28,7 @@ namespace {
 
 // A name beside `path` no other writer uses: pid and a process-wide counter.
 std::string temp_name(const std::string& path) {
-    static std::atomic<unsigned> counter{0};
-    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    return path + ".refract-tmp-" + random_token();  // unpredictable: no planted link to follow
 }
 
 std::string gnuplot_quote(const std::string& s) {  // single-quoted gnuplot string
@@ -46,26 +47,7 @@ std::string last_line(const std::string& text) {
 
 }  // namespace
 
-void write_text_atomic(const std::string& path, const std::string& text) {
-    const std::string tmp = temp_name(path);
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
-        out << text;
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw std::runtime_error(path + ": write failed");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error(path + ": cannot rename the temporary file into place");
-    }
-}
+void write_text_atomic(const std::string& path, const std::string& text) { write_file_atomic(path, text); }
 
 std::string fmt(double v) {
     char buf[40];
@@ -190,7 +172,7 @@ void gnuplot_figure(const std::string& dir, const std::string& name, const std::
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     pid_t pid = 0;
     const int rc = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);

@@ -9,7 +9,7 @@
 namespace refract::experiments {
 
 // Writes `text` to a temporary name beside `path` and renames it: never a half-written
-// file. Throws std::runtime_error naming the path on failure.
+// file (geometry/atomic_file.h). Throws InputError naming the path on failure.
 void write_text_atomic(const std::string& path, const std::string& text);
 
 // Number formatting for CSV cells: shortest round-trip form ("%.17g" trimmed to the

@@ -156,3 +156,16 @@ TEST_CASE("Error contract: a field name's escape and newline are printed as \\xN
     CHECK(name.err.find("case names") != std::string::npos);
     fs::remove_all(dir);
 }
+
+TEST_CASE("An unwritable experiment or far-field output directory is bad input (exit 2), refused before the work",
+          "[cli][errors][limits]") {
+    const fs::path dir = fs::temp_directory_path() / ("refract-cli-outdir-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    { std::ofstream{dir / "file"} << "x"; }  // a file where the directory would go
+    const Run e = run("experiment optics-bench --quick -o " + (dir / "file" / "ob").string(), dir);
+    CHECK(e.code == 2);
+    CHECK(count_lines(e.err) == 1);
+    CHECK(e.err.find("file/ob") != std::string::npos);
+    fs::remove_all(dir);
+}

@@ -133,7 +133,7 @@ TEST_CASE("Yasuda driver (quick) writes its CSV, figures, renders, scenes and su
                           "memory.png", "summary.md", "scenes/fig8_a.json", "scenes/fig9_a.json",
                           "scenes/tree_growth.json"})
         CHECK(fs::file_size(d / f) > 0);
-    for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find(".tmp-") == std::string::npos);
+    for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find("refract-tmp") == std::string::npos);
     // The scene files re-render with `refract render`.
     const Scene s = load_scene((d / "scenes/fig8_j.json").string());
     CHECK(s.materials.at(s.objects.at(0).material).dielectric()->ior == 10.0);
@@ -302,7 +302,7 @@ TEST_CASE("Plot helpers: CSV round trip, shortest round-trip numbers, a clear er
         gnuplot_figure(d.string(), "good", "set datafile separator ','\nplot 't.csv' every ::1 using 1:2\n");
         CHECK(fs::file_size(d / "good.png") > 0);
         CHECK(fs::file_size(d / "good.pdf") > 0);
-        for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find(".tmp-") == std::string::npos);
+        for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find("refract-tmp") == std::string::npos);
     }
     fs::remove_all(d);
 }
@@ -325,7 +325,7 @@ TEST_CASE("Polarisation driver (quick): sphere DoP per path equals the closed fo
         for (const char* f : {"sphere_dop.png", "depth_split.png", "de2000_diamond.png", "analyser.png",
                               "dolp_diamond.png"})
             CHECK(fs::file_size(d / f) > 0);
-    for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find(".tmp-") == std::string::npos);
+    for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().string().find("refract-tmp") == std::string::npos);
 
     // 1. Every class of every sphere, at every angle, against its closed form.
     REQUIRE(r.sphere.errors.size() == 8);

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "geometry/atomic_file.h"
 #include "geometry/error.h"
 
 namespace refract::validation {
@@ -71,21 +72,10 @@ void write_heatmap(const std::string& path, const Image& a, const Image& b) {
     }
     OIIO::ImageBuf heat = IBA::color_map(diff, 0, "inferno");
     if (heat.has_error()) throw InputError(path + ": cannot build heat map: " + heat.geterror());
-    const std::filesystem::path target(path);
-    const std::filesystem::path tmp = target.parent_path() / (".tmp-" + target.stem().string() + "-" +
-                                                              std::to_string(::getpid()) + target.extension().string());
+    TempFile tmp(path, true);  // the extension picks the writer
     heat.set_write_format(OIIO::TypeDesc::UINT8);
-    if (!heat.write(tmp.string())) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw InputError(path + ": cannot write heat map: " + heat.geterror());
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, target, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw InputError(path + ": cannot write heat map: " + ec.message());
-    }
+    if (!heat.write(tmp.path())) throw InputError(path + ": cannot write heat map: " + heat.geterror());
+    tmp.commit();
 }
 
 std::vector<std::pair<int, int>> line_pixels(int x0, int y0, int x1, int y1) {
