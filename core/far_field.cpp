@@ -67,8 +67,8 @@ void check(const FarFieldSettings& s) {
     positive_count(s.polar_bins, "polar bins", 1 << 14);
     positive_count(s.angle_bins, "angle bins", 1 << 20);
     positive_count(s.classes, "classes", 64);
-    if (s.photons < 1 || s.photons > (std::uint64_t{1} << 40))
-        throw InputError("far field: photons must be in [1, 2^40], got " + std::to_string(s.photons));
+    if (s.photons < 1 || s.photons > (std::uint64_t{1} << 31))
+        throw InputError("far field: photons must be in [1, 2^31], got " + std::to_string(s.photons));
     if (s.wavelengths.size() > 1001) throw InputError("far field: at most 1001 wavelengths");
     for (double l : s.wavelengths)
         if (!(l >= spectrum::kMinWavelength && l <= spectrum::kMaxWavelength))

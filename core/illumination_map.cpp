@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "geometry/error.h"
 
 namespace refract {
 
@@ -12,7 +15,12 @@ IlluminationMap IlluminationMap::for_plane(const Plane& p, const Vec3& centre, d
     const Vec3 a = std::abs(n.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
     m.u_ = n.cross(a).normalized();
     m.v_ = n.cross(m.u_);
-    m.cells_ = std::max(1, static_cast<int>(std::ceil(2.0 * half / element_size)));
+    const double cells = std::ceil(2.0 * half / element_size);
+    if (!(cells * cells <= static_cast<double>(kMaxCells)))
+        throw InputError("/render/light_pass/element_size: a plane's map of " + format_value(cells) + " × " +
+                         format_value(cells) + " elements exceeds " + std::to_string(kMaxCells) +
+                         " elements (raise element_size)");
+    m.cells_ = std::max(1, static_cast<int>(cells));
     m.size_ = element_size;
     const Vec3 c = centre - (n.dot(centre) - p.offset) * n;  // projection onto the plane
     const double h = 0.5 * m.cells_ * element_size;
@@ -30,7 +38,11 @@ IlluminationMap IlluminationMap::for_mesh(const TriangleMesh& mesh, double eleme
     for (const auto& t : mesh.triangles) {
         const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
         const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-        const int k = std::max(1, static_cast<int>(std::ceil(edge / element_size)));
+        const double kd = std::max(1.0, std::ceil(edge / element_size));
+        if (!(total + kd * kd <= static_cast<double>(kMaxCells)))  // before any int arithmetic
+            throw InputError("/render/light_pass/element_size: a mesh's map exceeds " + std::to_string(kMaxCells) +
+                             " elements (raise element_size)");
+        const int k = static_cast<int>(kd);
         const double area = 0.5 * (b - a).cross(c - a).norm() / (static_cast<double>(k) * k);
         m.k_.push_back(k);
         m.first_.push_back(total);

@@ -16,6 +16,9 @@ namespace refract {
 
 class IlluminationMap {
 public:
+    // The most elements a map may hold (docs/limits.md); more throws InputError naming
+    // /render/light_pass/element_size.
+    static constexpr long long kMaxCells = 1LL << 22;
     // Square of half-size `half` on plane p centred on the projection of `centre`.
     static IlluminationMap for_plane(const Plane& p, const Vec3& centre, double half, double element_size);
     static IlluminationMap for_mesh(const TriangleMesh& m, double element_size);

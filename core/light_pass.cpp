@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/emitters.h"
+#include "geometry/error.h"
 #include "core/ray_tree.h"
 #include "core/threads.h"
 
@@ -113,8 +114,13 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         const Object& o = scene.objects[k];
         const Material& m = scene.materials[o.material];
         if (!m.diffuse_surface()) continue;
-        maps->by_object[k] = std::visit([&](const auto& shape) { return map_for(shape, centre, lp.region * extent, lp.element_size); },
-                                        o.shape);
+        try {
+            maps->by_object[k] = std::visit(
+                [&](const auto& shape) { return map_for(shape, centre, lp.region * extent, lp.element_size); }, o.shape);
+        } catch (const InputError& e) {
+            throw InputError((scene.source.empty() ? std::string("scene") : scene.source) + ": " + e.what() +
+                             " (object '" + o.name + "')");
+        }
     }
     Accumulator acc;
     acc.sums.resize(scene.objects.size());

@@ -44,6 +44,10 @@ using TreeEntry = TreeEntryT<NaturalLight>;
 
 struct TreeLimits {
     static constexpr int kUnlimited = 1 << 30;
+    // Work bounds whatever the threshold (docs/limits.md): the branches waiting in one
+    // tree's list (Whitted: the nodes of its stored tree), and the segments of one walk.
+    static constexpr size_t kMaxEntries = size_t{1} << 20;
+    static constexpr std::uint64_t kMaxSegments = std::uint64_t{1} << 26;
     double threshold = 0;  // RenderSettings::pruning_threshold()
     int max_depth = 16;
     int max_reflections = kUnlimited, max_transmissions = kUnlimited;
@@ -52,6 +56,10 @@ struct TreeLimits {
     // the end (the shortcut's three test wavelengths) are not counted.
     const std::vector<Vec3>* band_weights = nullptr;
 };
+
+// Throws InputError naming the scene and its max_depth and threshold: one ray tree grew
+// past TreeLimits::kMaxEntries waiting branches (`entries`) or kMaxSegments segments.
+[[noreturn]] void tree_too_large(const Scene& scene, bool entries);
 
 // The limits a scene's render settings set (no reflection/transmission limits).
 inline TreeLimits tree_limits(const RenderSettings& s) {
@@ -103,8 +111,10 @@ public:
     // Walks the list to the end.
     template <class Ends>
     void walk(List& list, Ends& ends) {
-        std::uint64_t peak = list.size();
+        std::uint64_t peak = list.size(), walked = 0;
         while (!list.empty()) {
+            if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
+                tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
             // ⑤ take the oldest entry and find its first surface.
             Entry e = list.front();
             list.pop_front();

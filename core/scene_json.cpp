@@ -15,6 +15,7 @@ namespace refract {
 namespace {
 
 constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-format.md)
+constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{64} << 20;  // a scene file
 
 using nlohmann::json;
 
@@ -344,8 +345,8 @@ LightPassSettings parse_light_pass(const JsonReader& r) {
     s.enabled = r.boolean("enabled", true);
     if (r.has("photons")) {
         const auto& v = r.raw("photons");
-        if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > (1ll << 34))
-            r.fail_at("photons", "must be an integer in [1, 2^34]");
+        if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > (1ll << 31))
+            r.fail_at("photons", "must be an integer in [1, 2^31]");
         s.photons = static_cast<std::uint64_t>(v.get<long long>());
     }
     s.element_size = r.positive("element_size", s.element_size);
@@ -544,6 +545,11 @@ Scene parse_scene(const json& j, const std::string& file) {
 }
 
 Scene load_scene(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec && size > kMaxSceneBytes)
+        throw InputError(path + ": the scene file has " + std::to_string(size) + " bytes, more than the limit of 64 MiB");
     std::ifstream in(path);
     if (!in) throw InputError(path + ": cannot open scene file");
     json j;

@@ -6,6 +6,9 @@
 
 #include "core/optics.h"
 #include "core/render.h"
+#include "core/scene_json.h"
+
+#include <nlohmann/json.hpp>
 #include "validation/analytic.h"
 
 using namespace refract;
@@ -143,4 +146,25 @@ TEST_CASE("Stochastic reflect/refract choice converges to the tree's value", "[r
     const Vec3 got = render_pixel(mc, 3, 4);
     // The pixel's variance is below 0.25 per channel; 20000 samples: 5 sigma < 0.018.
     CHECK((got - expect).cwiseAbs().maxCoeff() < 0.018);
+}
+
+TEST_CASE("The tree integrators bound their work whatever the threshold: an exploding tree is refused, naming the "
+          "settings", "[integrators][limits]") {
+    // A glass sphere inside a mirror room: every branch stays inside and splits again.
+    const std::string room = R"({"camera": {"location": [0,0,-4], "look_at": [0,0,0], "width": 1, "height": 1},
+        "materials": {"g": {"type": "dielectric", "ior": 1.5}, "m": {"type": "mirror", "color": [0.9,0.9,0.9]}},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "g"},
+                    {"type": "sphere", "center": [0.3,0.2,0], "radius": 9, "material": "m"}],
+        "render": RENDER})";
+    const auto scene = [&](const std::string& render) {
+        std::string t = room;
+        t.replace(t.find("RENDER"), 6, render);
+        return parse_scene(nlohmann::json::parse(t), "room.json");
+    };
+    CHECK_THROWS_WITH(render(scene(R"({"integrator": "whitted", "max_depth": 60})")),
+                      Catch::Contains("room.json: /render") && Catch::Contains("max_depth 60"));
+    CHECK_THROWS_WITH(render(scene(R"({"integrator": "fresnel-tree", "threshold": 0, "max_depth": 10000})")),
+                      Catch::Contains("raise /render/threshold"));
+    // With the default threshold the same room renders.
+    CHECK_NOTHROW(render(scene(R"({"integrator": "fresnel-tree", "max_depth": 10000})")));
 }

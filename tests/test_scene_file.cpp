@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <unistd.h>
 
 #include <cmath>
 
@@ -147,4 +148,29 @@ TEST_CASE("A camera field that does not apply to its type is refused, naming it"
     o["camera"].erase("angle");
     o["camera"]["ortho_height"] = 3;
     CHECK(parse_scene(o, "o.json").camera.ortho_height == 3);
+}
+
+TEST_CASE("Resource limits of the scene reader and the light pass: file size, photons, illumination-map elements",
+          "[scene][limits]") {
+    using nlohmann::json;
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("refract-limits-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    { std::ofstream{dir / "huge.json"} << "{}"; }
+    fs::resize_file(dir / "huge.json", (std::uintmax_t{64} << 20) + 1);  // sparse: nothing is written
+    CHECK_THROWS_WITH(load_scene((dir / "huge.json").string()), Catch::Contains("huge.json") && Catch::Contains("64 MiB"));
+    CHECK_THROWS_WITH(load_scene(dir.string()), Catch::Contains("is a directory"));
+    fs::remove_all(dir);
+    json s = {{"camera", {{"location", {0, 4, -4}}, {"look_at", {0, 0, 0}}, {"width", 8}, {"height", 6}}},
+              {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.5}}}, {"floor", {{"type", "diffuse"}}}}},
+              {"objects", {{{"type", "sphere"}, {"center", {0, 1, 0}}, {"radius", 1}, {"material", "glass"}},
+                           {{"type", "plane"}, {"name", "floor"}, {"normal", {0, 1, 0}}, {"offset", 0}, {"material", "floor"}}}},
+              {"lights", {{{"position", {0, 8, 0}}}}},
+              {"render", {{"light_pass", {{"photons", 1LL << 34}}}}}};
+    CHECK_THROWS_WITH(parse_scene(s, "p.json"), Catch::Contains("/render/light_pass/photons") && Catch::Contains("2^31"));
+    s["render"]["light_pass"] = {{"photons", 1000}, {"element_size", 1e-4}};
+    CHECK_THROWS_WITH(render(parse_scene(s, "cells.json")),
+                      Catch::Contains("cells.json") && Catch::Contains("/render/light_pass/element_size") &&
+                          Catch::Contains("floor"));
 }

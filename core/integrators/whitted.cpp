@@ -1,5 +1,7 @@
 #include "core/integrators/whitted.h"
 
+#include "core/ray_tree.h"
+
 #include <optional>
 #include <vector>
 
@@ -42,6 +44,7 @@ Vec3 whitted_radiance(const SceneTracer& tracer, const Ray& primary, RenderStats
                 ++stats.depth_limited;
                 continue;
             }
+            if (tree.size() >= TreeLimits::kMaxEntries) tree_too_large(tracer.scene(), true);
             tree[k].child[b] = static_cast<int>(tree.size());
             tree[k].factor[b] = absorbed ? Vec3(n.branch[b].factor.cwiseProduct(*absorbed)) : n.branch[b].factor;
             tree.emplace_back();
