@@ -107,7 +107,7 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--samples", a->samples, "POV-Ray dispersion_samples (31 = 400-700 nm every 10 nm)");
     sub->add_option("--photons", a->photons, "Light-pass photons (30000)");
     sub->add_option("--povray", a->povray, "POV-Ray executable");
-    sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900)");
+    sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900; 0.001 to 86400)");
     sub->add_flag("--no-povray", a->no_povray, "Time refract only");
     sub->add_flag("--no-photons", a->no_photons, "Skip the light pass against POV-Ray photons");
     sub->add_option("--polarisation-pairs", a->polarisation_pairs,
@@ -123,6 +123,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
             throw InputError("bench: --threads must be in [1, 256] (got " + std::to_string(a->threads) + ")");
         if (a->samples < 2 || a->samples > 1000)
             throw InputError("bench: --samples must be in [2, 1000] (got " + std::to_string(a->samples) + ")");
+        if (!(a->timeout >= 0.001 && a->timeout <= 86400))  // NaN too
+            throw InputError("bench: --timeout must be a number of seconds in [0.001, 86400]");
         if (!a->no_povray && a->polarisation_pairs == 0 && validation::find_povray(a->povray).empty())
             throw InputError("bench: POV-Ray executable '" + a->povray +
                              "' not found (install POV-Ray 3.7, or time refract alone with --no-povray)");

@@ -54,10 +54,11 @@ int JsonReader::integer(const std::string& key, int fallback, int lo, int hi) co
     if (!has(key)) return fallback;
     const auto& v = raw(key);
     if (!v.is_number_integer()) fail_at(key, "must be an integer");
-    const long long x = v.get<long long>();
+    // An unsigned value past 2^63 would read as a negative long long: report it as given.
+    const bool huge = v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
+    const long long x = huge ? static_cast<long long>(hi) + 1 : v.get<long long>();
     if (x < lo || x > hi)
-        fail_at(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
-                         std::to_string(x) + ")");
+        fail_at(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " + v.dump() + ")");
     return static_cast<int>(x);
 }
 bool JsonReader::boolean(const std::string& key, bool fallback) const {

@@ -35,6 +35,8 @@ Camera parse_camera(const JsonReader& r) {
         r.fail_at("height", std::to_string(c.width) + " × " + std::to_string(c.height) +
                                 " pixels exceed the limit of 2^26 (67 108 864) pixels");
     if ((c.look_at - c.location).norm() == 0) r.fail_at("look_at", "must differ from location");
+    if (!std::isfinite((c.look_at - c.location).norm()) || !(c.location.norm() < 1e150) || !(c.look_at.norm() < 1e150))
+        r.fail_at("location", "the camera's location and look_at must lie within 1e150 of the origin (rays would overflow)");
     if (c.sky.cross(c.look_at - c.location).norm() == 0) r.fail_at("sky", "must not be parallel to the view direction");
     // A field that does not apply to the camera's type is refused, not ignored.
     if (c.type == Camera::Type::Perspective && r.has("ortho_height"))

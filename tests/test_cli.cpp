@@ -151,6 +151,11 @@ TEST_CASE("Error contract: a field name's escape and newline are printed as \\xN
     const Run bench = run("bench --povray refract-no-such-povray", dir);
     CHECK(bench.code == 2);
     CHECK(bench.err.find("not found") != std::string::npos);
+    for (const char* t : {"nan", "-1"}) {
+        const Run timeout = run(std::string("bench --no-povray --timeout ") + t, dir);
+        CHECK(timeout.code == 2);
+        CHECK(timeout.err.find("--timeout") != std::string::npos);
+    }
     const Run name = run("validate ../x -o " + (dir / "v").string(), dir);
     CHECK(name.code == 2);
     CHECK(name.err.find("case names") != std::string::npos);

@@ -174,3 +174,12 @@ TEST_CASE("Resource limits of the scene reader and the light pass: file size, ph
                       Catch::Contains("cells.json") && Catch::Contains("/render/light_pass/element_size") &&
                           Catch::Contains("floor"));
 }
+
+TEST_CASE("Overflowing input: a camera at 1e308 and a width of 2^64 - 1 are refused, reported as given",
+          "[scene][limits]") {
+    using nlohmann::json;
+    json j = {{"camera", {{"location", {0, 0, -1e308}}, {"width", 4}, {"height", 3}}}, {"objects", json::array()}};
+    CHECK_THROWS_WITH(parse_scene(j, "c.json"), Catch::Contains("/camera/location"));
+    j = json::parse(R"({"camera": {"width": 18446744073709551615, "height": 3}, "objects": []})");
+    CHECK_THROWS_WITH(parse_scene(j, "w.json"), Catch::Contains("/camera/width") && Catch::Contains("18446744073709551615"));
+}

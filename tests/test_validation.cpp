@@ -468,3 +468,20 @@ TEST_CASE("validate stays inside its output directory: a case named '..' or with
     CHECK_NOTHROW(check_case_name("fig8-n1.333", "validate"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("A tolerance file's profile indices outside an image are refused, not overflowed", "[validation][limits]") {
+    const fs::path dir = fs::temp_directory_path() / ("refract-tol-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "scenes");
+    { std::ofstream{dir / "scenes" / "x.json"} << R"({"camera": {"width": 4, "height": 3}, "objects": []})"; }
+    { std::ofstream{dir / "scenes" / "x.tol.json"} << R"({"analytic": {"kind": "fresnel-sphere",
+          "profile": {"from": [0, 9223372036854775807], "to": [-2147483648, 0]}}})"; }
+    SuiteOptions opt;
+    opt.scenes_dir = (dir / "scenes").string();
+    opt.out_dir = (dir / "out").string();
+    opt.povray.executable = "refract-no-such-povray";
+    const CaseResult c = run_case("x", opt);
+    CHECK(c.status == Status::Skip);
+    CHECK_THAT(c.skip_reason, Contains("x.tol.json") && Contains("pixel indices must be in [0, 32767]"));
+    fs::remove_all(dir);
+}

@@ -56,6 +56,11 @@ int pixel_coord(const JsonReader& r, const std::string& key, int index) {
     const auto& v = r.raw(key);
     if (!v.is_array() || v.size() != 2 || !v[index].is_number_integer())
         r.fail_at(key, "must be [x, y] pixel indices");
+    // Images are at most 32 768 pixels wide: larger indices (which would overflow the
+    // profile's arithmetic) are refused.
+    if (v[index].is_number_unsigned() ? v[index].get<unsigned long long>() > 32767 : v[index].get<long long>() < 0 ||
+                                                                                         v[index].get<long long>() > 32767)
+        r.fail_at(key, "pixel indices must be in [0, 32767]");
     return v[index].get<int>();
 }
 
