@@ -4,6 +4,8 @@
 #                           the validation report into out/ (open out/index.html)
 #   bash run.sh test        install what is missing, build, run the test suite (ctest)
 #   bash run.sh build       install and build only
+#   bash run.sh fuzz [S]    build the libFuzzer target (clang, ASan, UBSan) in build-fuzz/ and
+#                           fuzz the scene reader and a tiny render for S seconds (60)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -46,8 +48,18 @@ case "${1:-}" in
         install_missing
         build
         ;;
+    fuzz)
+        PACKAGES+=(clang libclang-rt-14-dev)
+        install_missing
+        CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREFRACT_FUZZ=ON \
+            -DREFRACT_BUILD_TESTS=OFF >/dev/null
+        cmake --build build-fuzz -j "$(nproc)" --target scene_fuzzer
+        mkdir -p build-fuzz/corpus build-fuzz/findings
+        ./build-fuzz/fuzz/scene_fuzzer -max_total_time="${2:-60}" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
+            -artifact_prefix=build-fuzz/findings/ build-fuzz/corpus scenes/examples scenes/validation
+        ;;
     *)
-        echo "usage: bash run.sh reproduce|test|build" >&2
+        echo "usage: bash run.sh reproduce|test|build|fuzz [SECONDS]" >&2
         exit 2
         ;;
 esac
