@@ -4,8 +4,35 @@
 #include <cmath>
 
 #include "core/environment_map.h"
+#include "geometry/error.h"
 
 namespace refract {
+
+namespace {
+
+// A direction uniform in solid angle in the cone of cos θ >= cos_max about `axis`, from
+// two uniform numbers: cos θ = 1 − xi (1 − cos_max), azimuth phi in the frame across it.
+Vec3 in_cone(const Vec3& axis, const Frame& f, double cos_max, double xi, double phi) {
+    const double cos_t = 1.0 - xi * (1.0 - cos_max);
+    const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
+    return (cos_t * axis + sin_t * (std::cos(phi) * f.u + std::sin(phi) * f.v)).normalized();
+}
+
+// Refuses an emitter whose photon power overflowed (a light or objects too far away).
+void check_power(const Scene& scene, const Emitter& em, const std::string& where) {
+    if (em.power.allFinite()) return;
+    throw InputError((scene.source.empty() ? std::string("scene") : scene.source) + ": " + where +
+                     ": the light pass's photon power overflows (lights and objects must lie within about 1e150 of "
+                     "each other)");
+}
+
+}  // namespace
+
+Frame frame_across(const Vec3& axis) {
+    const Vec3 a = std::abs(axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+    const Vec3 u = axis.cross(a).normalized();
+    return {u, axis.cross(u)};
+}
 
 std::vector<BoundingSphere> transparent_targets(const Scene& scene) {
     std::vector<BoundingSphere> targets;
@@ -31,6 +58,8 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
             em.power = L.color * (M_PI * L.radius * L.radius / static_cast<double>(em.photons));  // irradiance × area
             em.stream = (std::uint64_t{1} << 40) + l;  // apart from the (light, target) streams
             em.light = l;
+            em.frame = frame_across(em.axis);
+            check_power(scene, em, "/lights/" + std::to_string(l));
             out.push_back(em);
             continue;
         }
@@ -65,6 +94,8 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
                 const double omega = 2.0 * M_PI * (1.0 - em.cos_max);
                 em.power = L.color * (em.dref * em.dref * omega / static_cast<double>(per_target));
             }
+            em.frame = frame_across(em.axis);
+            check_power(scene, em, "/lights/" + std::to_string(l));
             out.push_back(em);
         }
     }
@@ -90,6 +121,7 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
             em.environment = &bg;
             em.geometry = M_PI * em.radius * em.radius * 4.0 * M_PI / static_cast<double>(per_target);
             em.power = max_l * em.geometry;
+            check_power(scene, em, "/background");
             if (max_l.maxCoeff() > 0) out.push_back(em);
         }
     }
@@ -107,33 +139,24 @@ PhotonRay sample_photon(const Emitter& em, std::uint64_t seed, std::uint64_t p) 
         // A direction of travel d uniform on the sphere, from the environment at −d, through
         // the disk across d that covers the target.
         const Vec3 d = rng.unit_vector();
-        const Vec3 a = std::abs(d.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-        const Vec3 u = d.cross(a).normalized(), v = d.cross(u);
+        const Frame f = frame_across(d);
         const double r = em.radius * std::sqrt(rng.uniform()), phi = 2.0 * M_PI * rng.uniform();
-        const Vec3 origin = em.origin - em.radius * d + r * (std::cos(phi) * u + std::sin(phi) * v);
+        const Vec3 origin = em.origin - em.radius * d + r * (std::cos(phi) * f.u + std::sin(phi) * f.v);
         return {Ray{origin, d}, em.environment->radiance(-d) * em.geometry};
     }
     const double xi = rng.uniform();
     const double phi = 2.0 * M_PI * rng.uniform();
-    const Vec3 a = std::abs(em.axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-    const Vec3 u = em.axis.cross(a).normalized(), v = em.axis.cross(u);
-    if (em.kind == Emitter::Kind::Cone) {  // uniform in the cone's solid angle
-        const double cos_t = 1.0 - xi * (1.0 - em.cos_max);
-        const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
-        return {Ray{em.origin, (cos_t * em.axis + sin_t * (std::cos(phi) * u + std::sin(phi) * v)).normalized()},
-                em.power};
-    }
+    if (em.kind == Emitter::Kind::Cone)  // uniform in the cone's solid angle
+        return {Ray{em.origin, in_cone(em.axis, em.frame, em.cos_max, xi, phi)}, em.power};
     // Uniform over the disk's area.
-    const Vec3 origin = em.origin + em.radius * std::sqrt(xi) * (std::cos(phi) * u + std::sin(phi) * v);
+    const Vec3 origin = em.origin + em.radius * std::sqrt(xi) * (std::cos(phi) * em.frame.u + std::sin(phi) * em.frame.v);
     if (em.cos_max >= 1.0) return {Ray{origin, em.axis}, em.power};
     // A sun's disk: a direction uniform in its cone, weighted by its cosine across the disk
     // (radiance E / (π sin²α) over the cone's solid angle 2π(1 − cos α)).
-    const double cos_t = 1.0 - rng.uniform() * (1.0 - em.cos_max);
-    const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
-    const double psi = 2.0 * M_PI * rng.uniform();
-    const Vec3 dir = (cos_t * em.axis + sin_t * (std::cos(psi) * u + std::sin(psi) * v)).normalized();
-    const double sin2_max = 1.0 - em.cos_max * em.cos_max;
-    const double weight = cos_t * 2.0 * (1.0 - em.cos_max) / sin2_max;
+    const double eta = rng.uniform();
+    const Vec3 dir = in_cone(em.axis, em.frame, em.cos_max, eta, 2.0 * M_PI * rng.uniform());
+    const double cos_t = 1.0 - eta * (1.0 - em.cos_max);
+    const double weight = cos_t * 2.0 * (1.0 - em.cos_max) / (1.0 - em.cos_max * em.cos_max);
     return {Ray{origin, dir}, em.power * weight};
 }
 

@@ -22,11 +22,18 @@
 
 namespace refract {
 
+// Two unit vectors across `axis`, with axis × u = v.
+struct Frame {
+    Vec3 u{1, 0, 0}, v{0, 1, 0};
+};
+Frame frame_across(const Vec3& axis);
+
 struct Emitter {
     enum class Kind { Cone, Disk, Environment };
     Kind kind = Kind::Cone;
-    Vec3 origin, axis;     // cone apex / disk centre; the central direction
-    Vec3 power;            // one photon's power (a cone's: at the reference distance)
+    Vec3 origin{0, 0, 0}, axis{0, 0, 1};  // cone apex / disk centre; the central direction
+    Frame frame;           // across the axis (made once, not per photon)
+    Vec3 power{0, 0, 0};   // one photon's power (a cone's: at the reference distance)
     double cos_max = 1;    // cone: half-angle; disk: the sun's half-angle (1: parallel)
     double dref = 0;       // cone: the reference distance (0 for parallel light)
     double radius = 0;     // disk

@@ -42,10 +42,9 @@ void check_pixels(const EnvironmentMap& m) {
                 if (!std::isfinite(p[c]))
                     throw InputError(m.path + ": pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                                      ") is not finite (an environment map needs finite values >= 0)");
-                if (p[c] < 0)
-                    throw InputError(m.path + ": pixel (" + std::to_string(i) + ", " + std::to_string(j) +
-                                     ") is negative (" + std::to_string(p[c]) +
-                                     "; an environment map needs finite values >= 0)");
+                if (!(p[c] >= 0 && p[c] <= 1e30))  // as light colours: sums must not overflow
+                    throw InputError(m.path + ": pixel (" + std::to_string(i) + ", " + std::to_string(j) + ") is " +
+                                     format_value(p[c]) + " (an environment map needs values in [0, 1e30])");
             }
         }
 }

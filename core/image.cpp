@@ -113,10 +113,24 @@ void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, cons
 
 }  // namespace
 
+namespace {
+
+// Images read are bounded as images rendered are (docs/limits.md): before any allocation.
+void check_read_size(const std::string& path, const OIIO::ImageSpec& spec) {
+    const double values = static_cast<double>(spec.width) * spec.height * spec.nchannels;
+    if (spec.width <= 0 || spec.height <= 0 || static_cast<double>(spec.width) * spec.height > 67108864.0 ||
+        spec.nchannels <= 0 || values > 268435456.0)
+        throw InputError(path + ": a " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " image of " +
+                         std::to_string(spec.nchannels) + " channels is beyond the limit of 2^26 pixels and 2^28 values");
+}
+
+}  // namespace
+
 Image read_image(const std::string& path) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
+    check_read_size(path, spec);
     Image img(spec.width, spec.height);
     std::vector<float> buf(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
@@ -148,6 +162,7 @@ Channels read_channels(const std::string& path) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
+    check_read_size(path, spec);
     Channels c;
     c.width = spec.width;
     c.height = spec.height;

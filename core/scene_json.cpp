@@ -15,6 +15,7 @@ namespace refract {
 namespace {
 
 constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-format.md)
+constexpr double kMaxLightColour = 1e30;  // light colours, environment radiance and scale
 constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{64} << 20;  // a scene file
 
 using nlohmann::json;
@@ -81,11 +82,12 @@ Background parse_environment(const JsonReader& r, const std::string& file) {
     if (r.has("color")) {
         b.color = r.vec3("color");
         for (int k = 0; k < 3; ++k)
-            if (b.color[k] < 0) r.fail_at("color", "components must be >= 0");
+            if (!(b.color[k] >= 0 && b.color[k] <= kMaxLightColour)) r.fail_at("color", "components must be in [0, 1e30]");
     } else {
         b.map = read_environment_map(r, file);
     }
     b.scale = r.positive("scale", b.scale);
+    if (!(b.scale <= kMaxLightColour)) r.fail_at("scale", "must be in (0, 1e30]");
     b.rotation_deg = r.number("rotation_deg", b.rotation_deg);
     return b;
 }
@@ -438,8 +440,6 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
 
 }  // namespace
 
-constexpr double kMaxLightColour = 1e30;
-
 // A light's own spectrum becomes the scene's (refract has one light spectrum per scene):
 // lights giving different spectra, or one differing from render.spectral.light, are refused.
 void apply_light_spectra(Scene& s, const JsonReader& root) {
@@ -523,7 +523,8 @@ Scene parse_scene(const json& j, const std::string& file) {
                 light.position = l.vec3("position");
                 light.direction = direction();
                 light.radius = l.number("radius");
-                if (!(light.radius > 0)) l.fail_at("radius", "must be positive");
+                if (!(light.radius > 0 && light.radius <= 1e15)) l.fail_at("radius", "must be in (0, 1e15]");
+                if (!(light.position.norm() < 1e150)) l.fail_at("position", "must lie within 1e150 of the origin");
             } else {
                 l.fail_at("type", "unknown light type '" + type + "' (point, directional, beam)");
             }

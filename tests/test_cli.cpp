@@ -27,6 +27,14 @@ Run run(const std::string& args, const fs::path& dir) {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
+// A fresh, empty directory for one test, named after it and this process.
+fs::path fresh_dir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("refract-cli-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
 int count_lines(const std::string& s) {
     int n = 0;
     for (char c : s) n += c == '\n';
@@ -36,9 +44,7 @@ int count_lines(const std::string& s) {
 }  // namespace
 
 TEST_CASE("refract render: bad scenes exit 2 with one line and write nothing", "[cli][errors]") {
-    const fs::path dir = fs::temp_directory_path() / "refract-cli-test";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = fresh_dir("test");
     const fs::path scene = dir / "bad.json";
     const fs::path out = dir / "out.png";
     const char* cases[] = {
@@ -65,9 +71,7 @@ TEST_CASE("refract render: bad scenes exit 2 with one line and write nothing", "
 }
 
 TEST_CASE("refract render writes the image and prints the counters", "[cli]") {
-    const fs::path dir = fs::temp_directory_path() / "refract-cli-ok";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = fresh_dir("ok");
     std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 16, "height": 12},
         "background": [1, 1, 1], "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1,
         "material": {"type": "dielectric", "ior": 1.5}}], "render": {"threshold": 0, "max_depth": 200}})";
@@ -79,9 +83,7 @@ TEST_CASE("refract render writes the image and prints the counters", "[cli]") {
 
 TEST_CASE("Resource limits: --threads outside [0, 1024] is refused with exit 2 in every subcommand, writing nothing",
           "[cli][errors][limits]") {
-    const fs::path dir = fs::temp_directory_path() / ("refract-cli-threads-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = fresh_dir("threads");
     std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
         "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}],
         "lights": [{"type": "beam", "position": [0,0,-3], "direction": [0,0,1], "radius": 1}]})";
@@ -102,8 +104,7 @@ TEST_CASE("Resource limits: --threads outside [0, 1024] is refused with exit 2 i
 
 TEST_CASE("Output paths are checked before the work: a missing directory, a directory, a format without a writer",
           "[cli][errors][limits]") {
-    const fs::path dir = fs::temp_directory_path() / ("refract-cli-out-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
+    const fs::path dir = fresh_dir("out");
     fs::create_directories(dir / "sub");
     std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
         "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}]})";
@@ -134,9 +135,7 @@ TEST_CASE("Output paths are checked before the work: a missing directory, a dire
 TEST_CASE("Error contract: a field name's escape and newline are printed as \\xNN on one line; a missing povray "
           "is bad input (exit 2) in validate and bench",
           "[cli][errors][limits]") {
-    const fs::path dir = fs::temp_directory_path() / ("refract-cli-contract-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = fresh_dir("contract");
     std::ofstream{dir / "esc.json"} << "{\"camera\": {\"width\": 4, \"height\": 3, \"bad\\u001b[31m\\nkey\": 1}}";
     const Run esc = run("render " + (dir / "esc.json").string() + " -o " + (dir / "o.png").string(), dir);
     CHECK(esc.code == 2);
@@ -164,9 +163,7 @@ TEST_CASE("Error contract: a field name's escape and newline are printed as \\xN
 
 TEST_CASE("An unwritable experiment or far-field output directory is bad input (exit 2), refused before the work",
           "[cli][errors][limits]") {
-    const fs::path dir = fs::temp_directory_path() / ("refract-cli-outdir-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = fresh_dir("outdir");
     { std::ofstream{dir / "file"} << "x"; }  // a file where the directory would go
     const Run e = run("experiment optics-bench --quick -o " + (dir / "file" / "ob").string(), dir);
     CHECK(e.code == 2);

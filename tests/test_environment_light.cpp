@@ -152,7 +152,7 @@ TEST_CASE("Environment light: a missing map, a non-positive scale, a NaN or nega
     CHECK_THROWS_WITH(refused(map_background(write_map(dir, "nan.exr", Vec3(1, nan, 1)))),
                       Catch::Contains("/background/map:") && Catch::Contains("pixel (0, 0) is not finite"));
     CHECK_THROWS_WITH(refused(map_background(write_map(dir, "negative.exr", Vec3(1, 1, -0.5)))),
-                      Catch::Contains("/background/map:") && Catch::Contains("pixel (0, 0) is negative"));
+                      Catch::Contains("/background/map:") && Catch::Contains("pixel (0, 0) is -"));
     const std::string text = (dir.path / "not-an-image.exr").string();
     { std::ofstream(text) << "not an image"; }
     CHECK_THROWS_WITH(refused(map_background(text)), Catch::Contains("/background/map:") && Catch::Contains("not-an-image.exr"));

@@ -231,3 +231,19 @@ TEST_CASE("No NaN from finite input: a sphere at 1e200 is no hit, and a light co
     const Scene s = parse_scene(drop_scene(1.5), "drop.json");
     CHECK_THROWS_WITH(far_field(s, axis_bins(10, 10), 70000), Catch::Contains("--threads"));
 }
+
+TEST_CASE("Beams, environments and far-away lights: values that would overflow the photons' power are refused",
+          "[far-field][limits]") {
+    json j = drop_scene(1.5);
+    j["lights"][0]["radius"] = 1e300;
+    CHECK_THROWS_WITH(parse_scene(j, "beam.json"), Catch::Contains("/lights/0/radius"));
+    j = drop_scene(1.5);
+    j["background"] = {{"type", "environment"}, {"color", {1, 1, 1}}, {"scale", 1e300}};
+    CHECK_THROWS_WITH(parse_scene(j, "env.json"), Catch::Contains("/background/scale"));
+    // A point light 1e200 away: its photons' power (∝ distance²) overflows.
+    j = drop_scene(1.5);
+    j["lights"] = {{{"type", "point"}, {"position", {0, 0, -1e200}}}};
+    const Scene far = parse_scene(j, "far.json");
+    CHECK_THROWS_WITH(far_field(far, axis_bins(10, 100), 1), Catch::Contains("far.json: /lights/0") &&
+                                                                 Catch::Contains("overflows"));
+}
