@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/memory.h"
 #include "core/threads.h"
 
 namespace refract::cli {
@@ -23,6 +24,13 @@ std::vector<Entry>& registry();
 
 // Worker threads: --threads N takes 0 (all cores) to kMaxThreads (core/threads.h).
 inline CLI::Range thread_range(int min = 0) { return CLI::Range(min, refract::kMaxThreads); }
+
+// --max-memory SIZE (core/memory.h): a render refuses, before allocating, to need more.
+inline void add_max_memory(CLI::App* sub, std::uint64_t& bytes) {
+    sub->add_option_function<std::string>(
+        "--max-memory", [&bytes](const std::string& v) { bytes = refract::parse_memory_size(v, "--max-memory"); },
+        "Memory budget (e.g. 512M, 4G; default 3/4 of physical memory): refused before allocating beyond it");
+}
 
 // True when stderr is a terminal (progress bars only then).
 bool stderr_is_terminal();

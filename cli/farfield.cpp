@@ -18,6 +18,7 @@ struct FarFieldArgs {
     std::string scene, output, binning = "sphere";
     std::vector<double> axis, reference, wavelengths;
     int bins = 180, azimuth_bins = 360, polar_bins = 180, classes = 5, threads = 0;
+    std::uint64_t max_memory = 0;
     std::uint64_t photons = 1000000, seed = 7;
     bool no_plot = false;
 };
@@ -42,6 +43,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
     sub->add_option("--wavelengths", a->wavelengths,
                     "Wavelengths in nm (default: the scene's sampling when a material is dispersive or absorbing, else 550)");
     sub->add_option("--seed", a->seed, "Random seed (7)");
+    refract::cli::add_max_memory(sub, a->max_memory);
     sub->add_option("--threads", a->threads, "Worker threads (0: all cores); the result does not depend on it")
         ->check(refract::cli::thread_range());
     sub->add_flag("--no-plot", a->no_plot, "Skip the gnuplot figure");
@@ -59,6 +61,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
         s.classes = a->classes;
         s.photons = a->photons;
         s.seed = a->seed;
+        s.max_memory = a->max_memory;
         s.wavelengths = a->wavelengths;
         if (scene.lights.empty() && scene.background.kind != Background::Kind::Environment)
             throw InputError(a->scene + ": /lights: the far-field detector needs a light or an environment background");

@@ -17,6 +17,7 @@ struct RenderArgs {
     bool linear16 = false;
     bool lost = false;
     bool spectral = false;
+    std::uint64_t max_memory = 0;
 };
 
 refract::cli::Registrar reg{10, [](CLI::App& app) {
@@ -26,6 +27,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     sub->add_option("-o,--output", args->output, "Output image; the extension picks the format")->required();
     sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it")
         ->check(refract::cli::thread_range());
+    refract::cli::add_max_memory(sub, args->max_memory);
     sub->add_flag("--stats", args->stats, "Print ray, tree and list counters");
     sub->add_flag("--linear16", args->linear16, "PNG output as 16-bit linear instead of 8-bit sRGB");
     sub->add_flag("--spectral-channels", args->spectral,
@@ -42,6 +44,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         opt.progress = refract::cli::stderr_is_terminal();
         opt.spectral_channels = args->spectral;
         opt.lost_energy = args->lost;
+        opt.max_memory = args->max_memory;
         const auto result = refract::render(scene, opt);
         refract::write_image(args->output, result.image, {args->linear16});
         if (result.polarisation)

@@ -13,6 +13,7 @@
 #include "core/integrators/spectral.h"
 #include "core/ray_tree.h"
 #include "geometry/error.h"
+#include "core/memory.h"
 #include "core/threads.h"
 
 namespace refract {
@@ -196,6 +197,9 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
     if (per_wavelength * r.wavelengths.size() > (size_t{1} << 28))
         throw InputError("far field: " + std::to_string(per_wavelength * r.wavelengths.size()) +
                          " bins × classes × components × wavelengths exceed 2^28 values");
+    const int nthreads = worker_threads(threads);
+    check_memory(estimate_far_field_memory(per_wavelength, r.wavelengths.size(), nthreads), settings.max_memory,
+                 "far field");
     r.power.assign(per_wavelength * r.wavelengths.size(), 0.0);
     r.unscattered.assign(r.wavelengths.size(), 0.0);
     r.absorbed.assign(r.wavelengths.size(), 0.0);
@@ -215,7 +219,6 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
 
     SceneTracer tracer(scene);
     const TreeLimits limits = ctx.limits(scene.settings);
-    const int nthreads = worker_threads(threads);
     tbb::task_arena arena(nthreads);
     constexpr std::uint64_t kChunk = 4096;
     for (size_t w = 0; w < r.wavelengths.size(); ++w) {

@@ -44,6 +44,7 @@ struct FarFieldSettings {
     // Wavelengths (nm) of the runs; empty: the scene's spectral sampling when a material is
     // dispersive or absorbs per wavelength, else the single wavelength 550 nm.
     std::vector<double> wavelengths;
+    std::uint64_t max_memory = 0;  // bytes; 0: default_memory_budget() (core/memory.h)
 };
 
 struct FarFieldResult {

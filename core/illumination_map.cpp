@@ -8,6 +8,18 @@
 
 namespace refract {
 
+namespace {
+// A plane's map: cells × cells square elements.
+double plane_cells(double half, double element_size) { return std::fmax(1.0, std::ceil(2.0 * half / element_size)); }
+
+// Triangle t of a mesh is cut into k² triangles, k = ceil(longest edge / element_size).
+double subdivision(const TriangleMesh& mesh, const Eigen::Vector3i& t, double element_size) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return std::max(1.0, std::ceil(edge / element_size));
+}
+}  // namespace
+
 IlluminationMap IlluminationMap::for_plane(const Plane& p, const Vec3& centre, double half, double element_size) {
     IlluminationMap m;
     m.kind_ = Kind::Plane;
@@ -15,7 +27,7 @@ IlluminationMap IlluminationMap::for_plane(const Plane& p, const Vec3& centre, d
     const Vec3 a = std::abs(n.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
     m.u_ = n.cross(a).normalized();
     m.v_ = n.cross(m.u_);
-    const double cells = std::ceil(2.0 * half / element_size);
+    const double cells = plane_cells(half, element_size);
     if (!(cells * cells <= static_cast<double>(kMaxCells)))
         throw InputError("/render/light_pass/element_size: a plane's map of " + format_value(cells) + " × " +
                          format_value(cells) + " elements exceeds " + std::to_string(kMaxCells) +
@@ -30,6 +42,20 @@ IlluminationMap IlluminationMap::for_plane(const Plane& p, const Vec3& centre, d
     return m;
 }
 
+double IlluminationMap::plane_elements(double half, double element_size) {
+    const double cells = plane_cells(half, element_size);
+    return cells * cells;
+}
+
+double IlluminationMap::mesh_elements(const TriangleMesh& mesh, double element_size) {
+    double total = 0;
+    for (const auto& t : mesh.triangles) {
+        const double k = subdivision(mesh, t, element_size);
+        total += k * k;
+    }
+    return total;
+}
+
 IlluminationMap IlluminationMap::for_mesh(const TriangleMesh& mesh, double element_size) {
     IlluminationMap m;
     m.kind_ = Kind::Mesh;
@@ -37,8 +63,7 @@ IlluminationMap IlluminationMap::for_mesh(const TriangleMesh& mesh, double eleme
     int total = 0;
     for (const auto& t : mesh.triangles) {
         const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
-        const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-        const double kd = std::max(1.0, std::ceil(edge / element_size));
+        const double kd = subdivision(mesh, t, element_size);
         if (!(total + kd * kd <= static_cast<double>(kMaxCells)))  // before any int arithmetic
             throw InputError("/render/light_pass/element_size: a mesh's map exceeds " + std::to_string(kMaxCells) +
                              " elements (raise element_size)");

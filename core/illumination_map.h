@@ -22,6 +22,11 @@ public:
     // Square of half-size `half` on plane p centred on the projection of `centre`.
     static IlluminationMap for_plane(const Plane& p, const Vec3& centre, double half, double element_size);
     static IlluminationMap for_mesh(const TriangleMesh& m, double element_size);
+    // The elements those maps would hold, computed without allocating (memory estimates).
+    static double plane_elements(double half, double element_size);
+    static double mesh_elements(const TriangleMesh& m, double element_size);
+    // Bytes a map holds per element (area, irradiance, the light pass's fixed-point sums).
+    static constexpr double kBytesPerElement = 56;
 
     int elements() const { return static_cast<int>(area_.size()); }
     double element_area(int e) const { return area_[static_cast<size_t>(e)]; }

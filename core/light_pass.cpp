@@ -96,7 +96,40 @@ std::unique_ptr<IlluminationMap> map_for(const TriangleMesh& m, const Vec3&, dou
 std::unique_ptr<IlluminationMap> map_for(const Sphere&, const Vec3&, double, double) { return nullptr; }
 std::unique_ptr<IlluminationMap> map_for(const ConvexPolyhedron&, const Vec3&, double, double) { return nullptr; }
 
+double elements_for(const Plane&, double half, double element) { return IlluminationMap::plane_elements(half, element); }
+double elements_for(const TriangleMesh& m, double, double element) { return IlluminationMap::mesh_elements(m, element); }
+double elements_for(const Sphere&, double, double) { return 0; }
+double elements_for(const ConvexPolyhedron&, double, double) { return 0; }
+
+// The maps' square region: centred on the transparent objects, half-size region × extent.
+struct MapRegion {
+    Vec3 centre{0, 0, 0};
+    double half = 0;
+};
+
+MapRegion map_region(const std::vector<BoundingSphere>& targets, const LightPassSettings& lp) {
+    MapRegion r;
+    double extent = 0;
+    for (const auto& t : targets) r.centre += t.centre / static_cast<double>(targets.size());
+    for (const auto& t : targets) extent = std::fmax(extent, (t.centre - r.centre).norm() + t.radius);
+    r.half = lp.region * extent;
+    return r;
+}
+
 }  // namespace
+
+double illumination_elements(const Scene& scene) {
+    const std::vector<BoundingSphere> targets = transparent_targets(scene);
+    if (targets.empty()) return 0;
+    const LightPassSettings& lp = scene.settings.light_pass;
+    const MapRegion region = map_region(targets, lp);
+    double total = 0;
+    for (const Object& o : scene.objects)
+        if (scene.materials[o.material].diffuse_surface())
+            total += std::visit([&](const auto& shape) { return elements_for(shape, region.half, lp.element_size); },
+                                o.shape);
+    return total;
+}
 
 std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -106,17 +139,15 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     const std::vector<BoundingSphere> targets = transparent_targets(scene);
     maps->by_object.resize(scene.objects.size());
     if (targets.empty()) return maps;
-    Vec3 centre(0, 0, 0);
-    double extent = 0;
-    for (const auto& t : targets) centre += t.centre / static_cast<double>(targets.size());
-    for (const auto& t : targets) extent = std::fmax(extent, (t.centre - centre).norm() + t.radius);
+    const MapRegion region = map_region(targets, lp);
+    const Vec3& centre = region.centre;
     for (size_t k = 0; k < scene.objects.size(); ++k) {
         const Object& o = scene.objects[k];
         const Material& m = scene.materials[o.material];
         if (!m.diffuse_surface()) continue;
         try {
             maps->by_object[k] = std::visit(
-                [&](const auto& shape) { return map_for(shape, centre, lp.region * extent, lp.element_size); }, o.shape);
+                [&](const auto& shape) { return map_for(shape, centre, region.half, lp.element_size); }, o.shape);
         } catch (const InputError& e) {
             throw InputError((scene.source.empty() ? std::string("scene") : scene.source) + ": " + e.what() +
                              " (object '" + o.name + "')");

@@ -23,4 +23,7 @@ namespace refract {
 // Runs the light pass with scene.settings.light_pass on `threads` threads (0: all).
 std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads = 0);
 
+// The elements its illumination maps would hold, computed without allocating.
+double illumination_elements(const Scene& scene);
+
 }  // namespace refract

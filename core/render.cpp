@@ -17,6 +17,7 @@
 #include "core/integrators/fresnel_tree.h"
 #include "core/integrators/spectral.h"
 #include "core/light_pass.h"
+#include "core/memory.h"
 #include "core/integrators/stochastic.h"
 #include "core/integrators/whitted.h"
 #include "core/random.h"
@@ -238,8 +239,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     validate(scene);
     check_channels(scene, opt);
     const auto t0 = std::chrono::steady_clock::now();
-    SceneTracer tracer(scene);
     const int threads = worker_threads(opt.threads);
+    check_memory(estimate_render_memory(scene, opt, threads), opt.max_memory,
+                 scene.source.empty() ? std::string("scene") : scene.source);
+    SceneTracer tracer(scene);
     std::optional<SpectralContext> ctx;
     std::shared_ptr<const IlluminationMaps> maps = opt.maps;
     RenderStats light_stats;

@@ -60,6 +60,9 @@ struct RenderOptions {
     bool spectral_channels = false;
     // Also the per-pixel weight the limits and the threshold dropped (RenderResult::lost).
     bool lost_energy = false;
+    // Memory budget in bytes (0: default_memory_budget(), core/memory.h): the render's
+    // estimate is checked against it before anything large is allocated.
+    std::uint64_t max_memory = 0;
 };
 
 // Exact polarisation's images (render.polarisation "exact"): per pixel the Stokes vectors

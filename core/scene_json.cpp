@@ -150,7 +150,15 @@ material::Dielectric parse_dielectric(const JsonReader& r, const std::string& fi
     m.filter = r.vec3("filter", m.filter);
     if (r.has("dispersion")) {
         m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
-        if (!r.has("ior")) m.ior = m.dispersion->nominal();
+        // One index: the dispersion model's. A stated `ior` must agree with it: exactly for
+        // POV-Ray's law (whose own ior is the interior's), to 5e-4 otherwise (a rounded n_d).
+        const double nominal = m.dispersion->nominal();
+        const double tolerance = m.dispersion->is_povray() ? 0.0 : 5e-4;
+        if (r.has("ior") && !(std::fabs(m.ior - nominal) <= tolerance))
+            r.fail_at("ior", format_value(m.ior) + " contradicts \"dispersion\", whose nominal index is " +
+                                 format_value(nominal) + (tolerance > 0 ? " (allowed difference 5e-4)" : "") +
+                                 "; give one or make them agree");
+        m.ior = nominal;
     }
     if (r.has("absorption"))
         m.absorption = spectrum::parse_absorption(r.raw("absorption"), file + ": " + r.path_of("absorption"));

@@ -94,6 +94,7 @@ TEST_CASE("Beer-Lambert in the spectral eye pass: each wavelength absorbs with i
     json j = plate_scene(0, 0.5, 0.0, "natural");
     j["camera"]["sky"] = {0, 0, 1};
     j["materials"]["glass"]["dispersion"] = "BK7";
+    j["materials"]["glass"].erase("ior");  // the model's own index
     j["materials"]["glass"]["absorption"] = {{"spectrum", {{400, 3.0}, {560, 3.0}, {600, 0.0}, {700, 0.4}}}};
     j["render"]["spectral"] = {{"pipeline", "cie-rgb"}};
     const Scene s = parse_scene(j, "bands.json");

@@ -102,6 +102,28 @@ TEST_CASE("Resource limits: --threads outside [0, 1024] is refused with exit 2 i
     fs::remove_all(dir);
 }
 
+TEST_CASE("Resource limits: a render or far field past --max-memory is refused with exit 2, writing nothing",
+          "[cli][errors][limits]") {
+    const fs::path dir = fresh_dir("memory");
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 400, "height": 300},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "dielectric"}}],
+        "lights": [{"type": "beam", "position": [0,0,-3], "direction": [0,0,1], "radius": 1}]})";
+    const std::string scene = (dir / "s.json").string(), out = (dir / "o.exr").string();
+    for (const std::string& args : {"render " + scene + " -o " + out + " --max-memory 1M",
+                                    "render " + scene + " -o " + out + " --max-memory lots",
+                                    "farfield " + scene + " -o " + (dir / "ff").string() + " --max-memory 100k"}) {
+        const Run r = run(args, dir);
+        CHECK(r.code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find("--max-memory") != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(out));
+    CHECK((!fs::exists(dir / "ff") || fs::is_empty(dir / "ff")));  // the output directory was checked, nothing written
+    CHECK(run("render " + scene + " -o " + out + " --max-memory 64M", dir).code == 0);
+    CHECK(fs::exists(out));
+    fs::remove_all(dir);
+}
+
 TEST_CASE("Output paths are checked before the work: a missing directory, a directory, a format without a writer",
           "[cli][errors][limits]") {
     const fs::path dir = fresh_dir("out");

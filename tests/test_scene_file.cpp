@@ -150,6 +150,33 @@ TEST_CASE("A camera field that does not apply to its type is refused, naming it"
     CHECK(parse_scene(o, "o.json").camera.ortho_height == 3);
 }
 
+TEST_CASE("A dispersive material's ior must agree with its dispersion model's nominal index", "[scene][limits]") {
+    using nlohmann::json;
+    auto scene = [](const json& material) {
+        json sphere = {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "w"}};
+        json j = {{"camera", {{"width", 4}, {"height", 3}}}, {"objects", json::array({sphere})}};
+        j["materials"]["w"] = material;
+        return j;
+    };
+    const double water = spectrum::catalogue("water").nominal();  // n at the d line, 1.3334
+    // A rounded n_d is accepted; the model's own index is used.
+    const Scene ok = parse_scene(scene({{"type", "dielectric"}, {"ior", 1.333}, {"dispersion", "water"}}), "w.json");
+    CHECK(ok.materials[0].dielectric()->ior == water);
+    CHECK(parse_scene(scene({{"type", "dielectric"}, {"dispersion", "water"}}), "w.json").materials[0].dielectric()->ior ==
+          water);
+    CHECK_THROWS_WITH(parse_scene(scene({{"type", "dielectric"}, {"ior", 1.5}, {"dispersion", "water"}}), "w.json"),
+                      Catch::Contains("w.json: /materials/w/ior") && Catch::Contains("contradicts") &&
+                          Catch::Contains("1.333403"));
+    CHECK_THROWS_WITH(parse_scene(scene({{"type", "dielectric"}, {"ior", water + 6e-4}, {"dispersion", "water"}}), "w.json"),
+                      Catch::Contains("/materials/w/ior"));
+    // POV-Ray's law carries its own ior: the two must be equal.
+    const json pov = {{"model", "povray"}, {"ior", 2.42}, {"dispersion", 1.1}};
+    CHECK(parse_scene(scene({{"type", "dielectric"}, {"ior", 2.42}, {"dispersion", pov}}), "p.json")
+              .materials[0].dielectric()->ior == 2.42);
+    CHECK_THROWS_WITH(parse_scene(scene({{"type", "dielectric"}, {"ior", 2.4201}, {"dispersion", pov}}), "p.json"),
+                      Catch::Contains("/materials/w/ior"));
+}
+
 TEST_CASE("Resource limits of the scene reader and the light pass: file size, photons, illumination-map elements",
           "[scene][limits]") {
     using nlohmann::json;
@@ -170,9 +197,16 @@ TEST_CASE("Resource limits of the scene reader and the light pass: file size, ph
               {"render", {{"light_pass", {{"photons", 1LL << 34}}}}}};
     CHECK_THROWS_WITH(parse_scene(s, "p.json"), Catch::Contains("/render/light_pass/photons") && Catch::Contains("2^31"));
     s["render"]["light_pass"] = {{"photons", 1000}, {"element_size", 1e-4}};
+    // Past the memory budget (the default one here: 188 GiB of maps) ...
     CHECK_THROWS_WITH(render(parse_scene(s, "cells.json")),
                       Catch::Contains("cells.json") && Catch::Contains("/render/light_pass/element_size") &&
-                          Catch::Contains("floor"));
+                          Catch::Contains("--max-memory"));
+    // ... and past a map's element limit whatever the budget, naming the object.
+    RenderOptions unbounded;
+    unbounded.max_memory = std::uint64_t{1} << 60;
+    CHECK_THROWS_WITH(render(parse_scene(s, "cells.json"), unbounded),
+                      Catch::Contains("cells.json") && Catch::Contains("/render/light_pass/element_size") &&
+                          Catch::Contains("floor") && Catch::Contains("4194304"));
 }
 
 TEST_CASE("Overflowing input: a camera at 1e308 and a width of 2^64 - 1 are refused, reported as given",

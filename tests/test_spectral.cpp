@@ -22,8 +22,8 @@ namespace {
 
 // A glass sphere on a diffuse floor under a point light, 40×30.
 Scene glass_scene(const std::string& dispersion_json, const std::string& render_json = "{}") {
-    std::string mat = R"({"type": "dielectric", "ior": 1.5)";
-    if (!dispersion_json.empty()) mat += R"(, "dispersion": )" + dispersion_json;
+    std::string mat = R"({"type": "dielectric")";
+    mat += dispersion_json.empty() ? R"(, "ior": 1.5)" : R"(, "dispersion": )" + dispersion_json;
     mat += "}";
     const auto j = nlohmann::json::parse(R"({
       "camera": {"location": [0, 1.6, -4], "look_at": [0, 0.5, 0], "angle": 40, "width": 40, "height": 30},
@@ -112,13 +112,13 @@ TEST_CASE("Per-wavelength Fresnel uses the band's index (physical) and the nomin
           Approx(optics::fresnel_reflectance(cos_i, static_cast<float>(glass->ior))).epsilon(1e-14));
 }
 
-TEST_CASE("Dispersion: ior absent takes the model's nominal index; an explicit ior stays", "[spectral]") {
+TEST_CASE("Dispersion: ior absent takes the model's nominal index; an explicit ior must agree with it", "[spectral]") {
     const auto j = nlohmann::json::parse(R"({"camera": {}, "objects": [],
         "materials": {"a": {"type": "dielectric", "dispersion": "diamond"},
-                      "b": {"type": "dielectric", "ior": 2.4, "dispersion": "diamond"}}})");
+                      "b": {"type": "dielectric", "ior": 2.4175, "dispersion": "diamond"}}})");
     const Scene s = parse_scene(j, "t.json");
     CHECK(s.materials[0].dielectric()->ior == spectrum::catalogue("diamond").nominal());
-    CHECK(s.materials[1].dielectric()->ior == 2.4);
+    CHECK(s.materials[1].dielectric()->ior == spectrum::catalogue("diamond").nominal());
     CHECK(s.settings.spectral.enabled);
     CHECK_THROWS_WITH(parse_scene(nlohmann::json::parse(R"({"camera": {}, "objects": [],
         "render": {"spectral": {"step": 7}}})"), "t.json"), Catch::Contains("t.json: /render/spectral"));
