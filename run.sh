@@ -4,6 +4,9 @@
 #                           the validation report into out/ (open out/index.html)
 #   bash run.sh test        install what is missing, build, run the test suite (ctest)
 #   bash run.sh build       install and build only
+#   bash run.sh sanitize    the sanitizer build (gcc, ASan, UBSan) in build-sanitize/ and the
+#                           tests but POV-Ray's, the experiments' and the random scenes'
+#                           (part of `test`; REFRACT_SKIP_SANITIZE=1 leaves it out)
 #   bash run.sh fuzz [S]    build the libFuzzer target (clang, ASan, UBSan) in build-fuzz/ and
 #                           fuzz the scene reader and a tiny render for S seconds (60)
 set -euo pipefail
@@ -27,6 +30,15 @@ install_missing() {
     fi
 }
 
+# The sanitizer build (build-sanitize/, gcc): every library, the command and the tests
+# with AddressSanitizer and UndefinedBehaviorSanitizer, at -O1 to keep its build short.
+sanitize() {
+    cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
+        -DREFRACT_SANITIZE=ON >/dev/null
+    cmake --build build-sanitize -j "$(nproc)"
+    ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -L sanitize
+}
+
 build() {
     cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
     cmake --build build -j "$(nproc)"
@@ -43,6 +55,11 @@ case "${1:-}" in
         install_missing
         build
         ctest --test-dir build --output-on-failure -j "$(nproc)"
+        [ "${REFRACT_SKIP_SANITIZE:-0}" = 1 ] || sanitize
+        ;;
+    sanitize)
+        install_missing
+        sanitize
         ;;
     build)
         install_missing
@@ -59,7 +76,7 @@ case "${1:-}" in
             -artifact_prefix=build-fuzz/findings/ build-fuzz/corpus scenes/examples scenes/validation
         ;;
     *)
-        echo "usage: bash run.sh reproduce|test|build|fuzz [SECONDS]" >&2
+        echo "usage: bash run.sh reproduce|test|build|sanitize|fuzz [SECONDS]" >&2
         exit 2
         ;;
 esac
