@@ -1,5 +1,7 @@
 #include "geometry/shapes.h"
 
+#include "geometry/plane_set.h"
+
 #include <cmath>
 #include <algorithm>
 #include <limits>
@@ -64,13 +66,24 @@ std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, 
     return best;
 }
 
-std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max) {
-    if (c.bound_radius > 0) {
-        const Vec3 oc = r.origin - c.bound_center;
-        const double b = oc.dot(r.dir);
-        const double q = oc.squaredNorm() - c.bound_radius * c.bound_radius;
-        if (q > 0 && (b > 0 || b * b < q)) return std::nullopt;  // outside and missing the sphere
-    }
+namespace {
+
+// The bounding-sphere reject: the origin outside the sphere and the ray missing it.
+bool misses_bound(const ConvexPolyhedron& c, const Ray& r) {
+    if (!(c.bound_radius > 0)) return false;
+    const Vec3 oc = r.origin - c.bound_center;
+    const double b = oc.dot(r.dir);
+    const double q = oc.squaredNorm() - c.bound_radius * c.bound_radius;
+    return q > 0 && (b > 0 || b * b < q);
+}
+
+}  // namespace
+
+// The scalar reference: the slab loop as it always was. intersect() below gives the same
+// result to the last bit through the vectorised kernel (geometry/plane_set.h); the tests
+// compare the two.
+std::optional<Hit> intersect_scalar(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max) {
+    if (misses_bound(c, r)) return std::nullopt;
     // Slab method over half-spaces n·x <= d: the ray is inside on [t_enter, t_exit],
     // t_enter = largest entering t, t_exit = smallest leaving t.
     double t_enter = -std::numeric_limits<double>::infinity();
@@ -97,6 +110,34 @@ std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_m
     if (t_exit > t_min && t_exit < t_max && f_exit >= 0)
         return Hit{t_exit, r.at(t_exit), c.planes[f_exit].normal, f_exit};
     return std::nullopt;
+}
+
+namespace {
+
+// The end of intersect_scalar, from the vectorised slab pass (its early exit once, at the
+// end). The same conditions, combined without branches (t_enter and t_exit are never NaN,
+// so !(t_enter > t_exit) is t_enter <= t_exit): one unpredictable branch instead of four.
+[[gnu::always_inline]] inline std::optional<Hit> hit_from(const SlabSpan& s, const ConvexPolyhedron& c, const Ray& r,
+                                                          double t_min, double t_max) {
+    const bool span = s.t_enter <= s.t_exit;
+    const bool enter = span & (s.t_enter > t_min) & (s.t_enter < t_max) & (s.f_enter >= 0);
+    const bool leave = span & (s.t_exit > t_min) & (s.t_exit < t_max) & (s.f_exit >= 0);
+    if (!(enter | leave)) return std::nullopt;
+    const double t = enter ? s.t_enter : s.t_exit;
+    const int f = enter ? s.f_enter : s.f_exit;
+    return Hit{t, r.at(t), c.planes[static_cast<size_t>(f)].normal, f};
+}
+
+}  // namespace
+
+std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max) {
+    if (misses_bound(c, r)) return std::nullopt;
+    return hit_from(slab_span(c.planes.data(), c.planes.size(), r), c, r, t_min, t_max);
+}
+
+std::optional<Hit> intersect(SlabIsa isa, const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max) {
+    if (misses_bound(c, r)) return std::nullopt;
+    return hit_from(slab_span(isa, c.planes.data(), c.planes.size(), r), c, r, t_min, t_max);
 }
 
 void set_bound(ConvexPolyhedron& c, const std::vector<Vec3>& vertices) {

@@ -56,6 +56,9 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
 std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);
+// The same, with the original scalar plane loop (the reference the vectorised kernel in
+// geometry/plane_set.h is tested against, bit for bit).
+std::optional<Hit> intersect_scalar(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const Shape& s, const Ray& r, double t_min, double t_max);
 
 // Axis-aligned bounds (used for culling and for export); empty optional when unbounded.
