@@ -4,8 +4,8 @@
 #                           the validation report into out/ (open out/index.html)
 #   bash run.sh test        install what is missing, build, run the test suite (ctest)
 #   bash run.sh build       install and build only
-#   bash run.sh sanitize    the sanitizer build (gcc, ASan, UBSan) in build-sanitize/ and the
-#                           tests but POV-Ray's, the experiments' and the random scenes'
+#   bash run.sh sanitize    the sanitizer build (gcc, ASan, UBSan) of geometry/, core/ and
+#                           their tests in build-sanitize/, and those tests
 #                           (part of `test`; REFRACT_SKIP_SANITIZE=1 leaves it out)
 #   bash run.sh fuzz [S]    build the libFuzzer target (clang, ASan, UBSan) in build-fuzz/ and
 #                           fuzz the scene reader and a tiny render for S seconds (60)
@@ -30,8 +30,8 @@ install_missing() {
     fi
 }
 
-# The sanitizer build (build-sanitize/, gcc): every library, the command and the tests
-# with AddressSanitizer and UndefinedBehaviorSanitizer, at -O1 to keep its build short.
+# The sanitizer build (build-sanitize/, gcc): geometry/, core/ and their tests with
+# AddressSanitizer and UndefinedBehaviorSanitizer, at -O1 to keep its build short.
 sanitize() {
     cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
         -DREFRACT_SANITIZE=ON >/dev/null
