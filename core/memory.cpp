@@ -83,6 +83,13 @@ void check_memory(const MemoryEstimate& e, std::uint64_t budget, const std::stri
                      format_bytes(largest->bytes) + ") for " + largest->field);
 }
 
+MemoryEstimate estimate_light_pass_memory(const Scene& scene) {
+    MemoryEstimate e;
+    if (scene.settings.spectral.enabled && scene.settings.light_pass.enabled)
+        e.add("/render/light_pass/element_size", illumination_elements(scene) * IlluminationMap::kBytesPerElement);
+    return e;
+}
+
 MemoryEstimate estimate_render_memory(const Scene& scene, const RenderOptions& opt, int threads) {
     MemoryEstimate e;
     const RenderSettings& s = scene.settings;
@@ -94,8 +101,8 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const RenderOptions& o
     if (opt.spectral_channels && s.spectral.enabled)
         e.add("--spectral-channels",
               pixels * (8 + 4) * static_cast<double>(spectrum::sample_wavelengths(s.spectral.sampling, "/render/spectral").size()));
-    if (s.spectral.enabled && s.light_pass.enabled && !opt.maps)
-        e.add("/render/light_pass/element_size", illumination_elements(scene) * IlluminationMap::kBytesPerElement);
+    if (!opt.maps)
+        for (const MemoryItem& i : estimate_light_pass_memory(scene).items) e.items.push_back(i);
     // Per thread: the tiles' statistics and a walker's list, small next to the images.
     e.add("--threads", static_cast<double>(std::max(1, threads)) * 64 * 1024);
     return e;

@@ -41,6 +41,9 @@ void check_memory(const MemoryEstimate& e, std::uint64_t budget, const std::stri
 // for), the float copy its writer makes, and the light pass's illumination maps.
 MemoryEstimate estimate_render_memory(const Scene& scene, const RenderOptions& opt, int threads);
 
+// The light pass's illumination maps alone (a render of one pixel, `refract trace`).
+MemoryEstimate estimate_light_pass_memory(const Scene& scene);
+
 // A far-field run's bins (the result and one tally per thread) and its written map.
 MemoryEstimate estimate_far_field_memory(std::size_t values_per_wavelength, std::size_t wavelengths, int threads);
 

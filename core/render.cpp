@@ -209,6 +209,7 @@ StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& sta
 
 StokesRGB render_pixel_stokes(const Scene& scene, int i, int j, RenderStats* stats) {
     validate(scene);
+    check_memory(estimate_light_pass_memory(scene), 0, scene.source.empty() ? std::string("scene") : scene.source);
     SceneTracer tracer(scene);
     RenderStats local;
     std::optional<SpectralContext> ctx;

@@ -57,6 +57,13 @@ void pad_planes(const Plane* planes, std::size_t n, std::size_t w, double* out) 
     }
 }
 
+// The first block of w planes: the planes themselves, or fewer than w padded into `padded`.
+const double* first_block(const Plane* planes, std::size_t n, std::size_t w, double* padded) {
+    if (n >= w) return reinterpret_cast<const double*>(planes);
+    pad_planes(planes, n, w, padded);
+    return padded;
+}
+
 // ---- Baseline (SSE2, W = 2) and AVX2 (W = 4): GNU vector extensions, written once. -----
 
 template <int W>
@@ -87,11 +94,7 @@ template <int W>
     vd f_enter = -1.0 - vd{}, f_exit = -1.0 - vd{};  // their plane indices (exact in double)
     double padded[4 * W];
     const double* all = reinterpret_cast<const double*>(planes);
-    const double* q = all;
-    if (n < W) {
-        pad_planes(planes, n, W, padded);
-        q = padded;
-    }
+    const double* q = first_block(planes, n, W, padded);
     vd index = lane;
     for (std::size_t first = 0;;) {
         vd nx, ny, nz, d;  // W planes {x, y, z, d} transposed
@@ -212,11 +215,7 @@ __attribute__((target("avx512f"))) SlabSpan slab_avx512f(const Plane* planes, st
     __m512d f_enter = _mm512_set1_pd(-1.0), f_exit = _mm512_set1_pd(-1.0);
     double padded[4 * W];
     const double* all = reinterpret_cast<const double*>(planes);
-    const double* q = all;
-    if (n < W) {
-        pad_planes(planes, n, W, padded);
-        q = padded;
-    }
+    const double* q = first_block(planes, n, W, padded);
     __m512d index = lane;
     for (std::size_t first = 0;;) {
         // v0 = planes 0, 1; v1 = 2, 3; v2 = 4, 5; v3 = 6, 7 (x y z d each)

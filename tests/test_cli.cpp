@@ -41,6 +41,14 @@ int count_lines(const std::string& s) {
     return n;
 }
 
+// The error contract: exit 2 and one line on stderr naming `what`.
+void check_refused(const Run& r, const std::string& what) {
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(count_lines(r.err) == 1);
+    CHECK(r.err.find(what) != std::string::npos);
+}
+
 }  // namespace
 
 TEST_CASE("refract render: bad scenes exit 2 with one line and write nothing", "[cli][errors]") {
@@ -57,11 +65,7 @@ TEST_CASE("refract render: bad scenes exit 2 with one line and write nothing", "
     };
     for (const char* text : cases) {
         std::ofstream{scene} << text;
-        const Run r = run("render " + scene.string() + " -o " + out.string(), dir);
-        INFO(r.err);
-        CHECK(r.code == 2);
-        CHECK(count_lines(r.err) == 1);
-        CHECK(r.err.find("bad.json") != std::string::npos);
+        check_refused(run("render " + scene.string() + " -o " + out.string(), dir), "bad.json");
         CHECK_FALSE(fs::exists(out));
     }
     const Run missing = run("render " + (dir / "nope.json").string() + " -o " + out.string(), dir);
@@ -92,10 +96,7 @@ TEST_CASE("Resource limits: --threads outside [0, 1024] is refused with exit 2 i
          {"render " + scene + " -o " + out + " --threads 70000", "render " + scene + " -o " + out + " --threads -1",
           "farfield " + scene + " -o " + (dir / "ff").string() + " --threads 70000",
           "experiment optics-bench -o " + (dir / "ob").string() + " --threads -2"}) {
-        const Run r = run(args, dir);
-        CHECK(r.code == 2);
-        CHECK(count_lines(r.err) == 1);
-        CHECK(r.err.find("threads") != std::string::npos);
+        check_refused(run(args, dir), "threads");
     }
     CHECK_FALSE(fs::exists(out));
     CHECK_FALSE(fs::exists(dir / "ff"));
@@ -112,10 +113,7 @@ TEST_CASE("Resource limits: a render or far field past --max-memory is refused w
     for (const std::string& args : {"render " + scene + " -o " + out + " --max-memory 1M",
                                     "render " + scene + " -o " + out + " --max-memory lots",
                                     "farfield " + scene + " -o " + (dir / "ff").string() + " --max-memory 100k"}) {
-        const Run r = run(args, dir);
-        CHECK(r.code == 2);
-        CHECK(count_lines(r.err) == 1);
-        CHECK(r.err.find("--max-memory") != std::string::npos);
+        check_refused(run(args, dir), "--max-memory");
     }
     CHECK_FALSE(fs::exists(out));
     CHECK((!fs::exists(dir / "ff") || fs::is_empty(dir / "ff")));  // the output directory was checked, nothing written
@@ -144,9 +142,7 @@ TEST_CASE("Output paths are checked before the work: a missing directory, a dire
             CHECK(r.code == 0);
             continue;
         }
-        CHECK(r.code == 2);
-        CHECK(count_lines(r.err) == 1);
-        CHECK(r.err.find(says) != std::string::npos);
+        check_refused(r, says);
     }
     const Run d = run("render " + scene + " -o " + (dir / "adir.exr").string(), dir);
     CHECK(d.code == 2);

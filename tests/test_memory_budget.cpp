@@ -70,4 +70,7 @@ TEST_CASE("Memory estimate: the illumination maps' elements equal those the ligh
     RenderOptions o;
     o.max_memory = 64ull << 20;
     CHECK_THROWS_WITH(render(s, o), Contains("/render/light_pass/element_size") && Contains("--max-memory"));
+    // One pixel (refract trace) runs the light pass too: the default budget bounds its maps.
+    s.settings.light_pass.element_size = 1e-5;
+    CHECK_THROWS_WITH(render_pixel(s, 0, 0), Contains("/render/light_pass/element_size") && Contains("--max-memory"));
 }
