@@ -10,11 +10,14 @@
 #include <memory>
 #include <optional>
 
+#include "cli/bench_sections.h"
+#include "cli/bench_timing.h"
 #include "cli/commands.h"
 #include "core/render.h"
 #include "experiments/common.h"
 #include "experiments/ohtsuka1998.h"
 #include "geometry/error.h"
+#include "validation/compare.h"
 #include "validation/pov_export.h"
 #include "validation/povray_runner.h"
 
@@ -26,21 +29,14 @@ struct Args {
     std::string povray = "povray";
     double timeout = 900;
     bool no_povray = false;
-    bool no_photons = false;
     int polarisation_pairs = 0;
+    bool kernels = false, meshes = false;
+    std::string rtiow;
+    int rounds = 0;  // 0: 5 for --kernels / --meshes, 3 for the diamond
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
+using refract::cli::bench::median;
+double cpu_seconds() { return refract::cli::bench::process_cpu_seconds(); }
 
 // Natural against exact polarisation on the same scene, in pairs (natural, exact, natural,
 // exact, ...): wall and CPU time of each render, median and min, the ratio per pair, and
@@ -92,15 +88,102 @@ void compare_polarisation(const nlohmann::json& scene, const refract::RenderOpti
         std::cout << "  load average after: " << std::setprecision(2) << load[0] << " " << load[1] << " " << load[2] << "\n";
 }
 
-void line(const std::string& what, double seconds, const std::string& extra = "") {
-    std::cout << "  " << std::left << std::setw(52) << what << std::right << std::setw(10) << std::fixed
-              << std::setprecision(3) << seconds << " s" << extra << "\n";
+// The gem as a triangle mesh instead of a plane set: the same solid (mesh_of), searched by
+// Embree in refract and written as mesh2 for POV-Ray.
+refract::Scene with_gem_as_mesh(refract::Scene s) {
+    for (refract::Object& o : s.objects)
+        if (const auto* c = std::get_if<refract::ConvexPolyhedron>(&o.shape)) o.shape = refract::mesh_of(*c);
+    return s;
 }
 
+// The 1998 diamond, paired rounds. Eye pass of the scene POV-Ray renders (compat mode,
+// POV-Ray's dispersion law): refract with the gem as planes and as a mesh, POV-Ray with
+// it as CSG and as mesh2; and refract's physical light + eye pass. Wall and CPU time of
+// each run (POV-Ray: its whole process), medians and minima, ratios per pair, and the
+// image differences that show each pair did the same work.
+void diamond(const refract::experiments::ohtsuka1998::SceneParams& p, const Args& a, const refract::RenderOptions& opt) {
+    using namespace refract;
+    namespace oh = experiments::ohtsuka1998;
+    namespace b = cli::bench;
+    const Scene phys = experiments::scene_from_json(oh::scene_json(p), "bench scene");
+    const Scene pov = experiments::scene_from_json(oh::povray_scene_json(p, a.samples), "bench povray scene");
+    const Scene pov_mesh = with_gem_as_mesh(pov);
+    size_t triangles = 0;
+    for (const Object& o : pov_mesh.objects)
+        if (const auto* m = std::get_if<TriangleMesh>(&o.shape)) triangles += m->triangles.size();
+    validation::PovrayOptions po;
+    po.executable = a.povray;
+    po.threads = a.threads;
+    po.timeout_seconds = a.timeout;
+    const std::string sdl_csg = a.no_povray ? "" : validation::export_pov(pov);
+    const std::string sdl_mesh = a.no_povray ? "" : validation::export_pov(pov_mesh);
+    std::vector<std::string> names = {"refract compat, gem as 121 planes", "refract compat, gem as " +
+                                      std::to_string(triangles) + " triangles (Embree)",
+                                      "refract physical, light + eye pass, 31 λ"};
+    if (!a.no_povray) {
+        names.push_back("POV-Ray, gem as CSG intersection");
+        names.push_back("POV-Ray, gem as mesh2");
+    }
+    std::cout << "  eye pass of the scene POV-Ray renders: POV-Ray's law, " << a.samples
+              << " bands; POV-Ray timed as a whole process; " << a.rounds << " paired rounds\n";
+    b::print_load("before");
+    std::vector<Image> images(names.size());
+    std::vector<double> eye_wall, light_wall, per_core;
+    const b::Paired t = b::paired_runs(names.size(), a.rounds, [&](size_t k) {
+        if (k >= 3) {
+            images[k] = validation::render_povray(k == 3 ? sdl_csg : sdl_mesh, p.width, p.height, po).image;
+            return;
+        }
+        const RenderResult r = render(k == 0 ? pov : k == 1 ? pov_mesh : phys, opt);
+        images[k] = r.image;
+        if (k == 2) {
+            light_wall.push_back(r.stats.light_seconds);
+            eye_wall.push_back(r.stats.seconds - r.stats.light_seconds);
+            per_core.push_back(static_cast<double>(r.stats.segments) / eye_wall.back() / a.threads);
+        }
+    });
+    b::print_load("after");
+    std::cout << "  " << std::left << std::setw(46) << "" << std::right << std::setw(12) << "wall median" << std::setw(10)
+              << "min" << std::setw(12) << "CPU median" << std::setw(10) << "min" << "\n";
+    for (size_t k = 0; k < names.size(); ++k)
+        std::cout << "  " << std::left << std::setw(46) << names[k] << std::right << std::fixed << std::setprecision(3)
+                  << std::setw(12) << b::median(t.wall[k]) << std::setw(10) << b::minimum(t.wall[k]) << std::setw(12)
+                  << b::median(t.cpu[k]) << std::setw(10) << b::minimum(t.cpu[k]) << "\n";
+    std::cout << "  physical render: light pass " << b::median(light_wall) << " s, eye pass " << b::median(eye_wall)
+              << " s (wall medians), " << std::scientific << std::setprecision(3) << b::median(per_core)
+              << " eye-pass segments/s per core" << std::fixed << "\n";
+    std::cout << "  target: physical light + eye pass <= 2 s wall on 2 cores: "
+              << (b::median(t.wall[2]) <= 2.0 ? "met" : "missed") << "\n";
+    // Ratios per pair (the same round), then their median.
+    const auto ratio = [&](size_t num, size_t den) {
+        std::vector<double> r;
+        for (size_t i = 0; i < t.cpu[num].size(); ++i) r.push_back(t.cpu[num][i] / t.cpu[den][i]);
+        return b::median(r);
+    };
+    const auto diff = [&](size_t x, size_t y) { return validation::compare_images(images[x], images[y], 1.0 / 255); };
+    const auto show_diff = [&](const std::string& what, size_t x, size_t y) {
+        const auto d = diff(x, y);
+        std::cout << "  same work? " << std::left << std::setw(44) << what << std::right << " RMSE " << std::scientific
+                  << std::setprecision(2) << d.rmse << ", max " << d.max_error << std::fixed << ", "
+                  << std::setprecision(3) << 100 * d.fraction_over << " % of pixels over 1/255\n";
+    };
+    show_diff("refract planes vs refract mesh:", 0, 1);
+    std::cout << std::setprecision(2) << "  CPU ratio refract mesh / refract planes (paired median): " << ratio(1, 0) << "x\n";
+    if (a.no_povray) return;
+    show_diff("POV-Ray CSG vs POV-Ray mesh2:", 3, 4);
+    show_diff("refract planes vs POV-Ray CSG:", 0, 3);
+    show_diff("refract mesh vs POV-Ray mesh2:", 1, 4);
+    std::cout << std::setprecision(2) << "  CPU ratio POV-Ray mesh2 / refract planes (like for like, the fastest of each): "
+              << ratio(4, 0) << "x (target >= 10x)\n"
+              << "  CPU ratio POV-Ray mesh2 / refract mesh:   " << ratio(4, 1) << "x\n"
+              << "  CPU ratio POV-Ray CSG / refract planes:   " << ratio(3, 0) << "x\n"
+              << "  CPU ratio POV-Ray CSG / POV-Ray mesh2:    " << ratio(3, 4) << "x\n";
+}
 refract::cli::Registrar reg{75, [](CLI::App& app) {
     auto a = std::make_shared<Args>();
     auto* sub = app.add_subcommand(
-        "bench", "Time the 1998 diamond (light + eye pass) and POV-Ray 3.7 on the matching scene, as ratios");
+        "bench", "Time the 1998 diamond against POV-Ray 3.7 (gem as CSG and as mesh2), paired; or the intersection "
+                 "kernels and meshes against Embree");
     sub->add_option("--width", a->width, "Image width (640)");
     sub->add_option("--height", a->height, "Image height (480)");
     sub->add_option("--threads", a->threads, "Threads for refract and POV-Ray (+WT), 2")->check(refract::cli::thread_range(1));
@@ -109,12 +192,23 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--povray", a->povray, "POV-Ray executable");
     sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900; 0.001 to 86400)");
     sub->add_flag("--no-povray", a->no_povray, "Time refract only");
-    sub->add_flag("--no-photons", a->no_photons, "Skip the light pass against POV-Ray photons");
     sub->add_option("--polarisation-pairs", a->polarisation_pairs,
                     "Only time natural against exact polarisation, in N pairs (natural, exact, ...)")
         ->check(CLI::Range(1, 100));
+    sub->add_flag("--kernels", a->kernels,
+                  "Only the round brilliant's intersection: plane-set kernel against Embree on its triangles, same rays");
+    sub->add_flag("--meshes", a->meshes, "Only the mesh search, 80 to 327 680 triangles, against Embree alone");
+    sub->add_option("--rtiow", a->rtiow,
+                    "Only the RTIOW chapter scene against a build of the book's code at PATH (docs/performance.md)");
+    sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
+        if (a->kernels || a->meshes || !a->rtiow.empty()) {
+            if (!a->rtiow.empty()) cli::bench::rtiow(a->rtiow, a->rounds > 0 ? a->rounds : 3);
+            if (a->kernels) cli::bench::kernels(a->rounds > 0 ? a->rounds : 5);
+            if (a->meshes) cli::bench::meshes(a->rounds > 0 ? a->rounds : 5);
+            return;
+        }
         namespace oh = experiments::ohtsuka1998;
         if (a->width < 1 || a->height < 1 || a->width > 8192 || a->height > 8192)
             throw InputError("bench: --width/--height must be in [1, 8192] (got " + std::to_string(a->width) + "×" +
@@ -140,62 +234,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
             compare_polarisation(oh::scene_json(p), opt, a->polarisation_pairs);
             return;
         }
-        // refract, physical: light pass + eye pass, full spectral split (31 wavelengths).
-        const Scene phys = experiments::scene_from_json(oh::scene_json(p), "bench scene");
-        const RenderResult full = render(phys, opt);
-        const double eye = full.stats.seconds - full.stats.light_seconds;
-        line("refract light pass (" + std::to_string(p.photons) + " photons)", full.stats.light_seconds);
-        line("refract eye pass (31 wavelengths, no shortcut)", eye);
-        line("refract light + eye pass", full.stats.seconds, full.stats.seconds < 10 ? "  (target < 10 s: met)"
-                                                                                      : "  (target < 10 s: missed)");
-        const double per_core = static_cast<double>(full.stats.segments) / eye / a->threads;
-        std::cout << "  eye-pass segments " << full.stats.segments << " (" << full.stats.wavelength_segments
-                  << " single-wavelength, inside/after the gem): " << std::scientific << std::setprecision(3)
-                  << per_core << " segments/s per core\n"
-                  << std::fixed;
-        // refract, POV-Ray compat mode with POV-Ray's law: the scene POV-Ray renders.
-        const nlohmann::json pj = oh::povray_scene_json(p, a->samples);
-        const Scene pov = experiments::scene_from_json(pj, "bench povray scene");
-        const RenderResult compat = render(pov, opt);
-        line("refract compat (POV-Ray law, " + std::to_string(a->samples) + " bands)", compat.stats.seconds);
-        // The same with a light pass: what POV-Ray renders with photons (statistically).
-        nlohmann::json pjl = pj;
-        pjl["render"]["light_pass"] = {{"photons", p.photons}, {"element_size", p.element_size}, {"region", 3}, {"seed", 7}};
-        const Scene pov_light = experiments::scene_from_json(pjl, "bench povray scene with light pass");
-        std::optional<RenderResult> compat_light;
-        if (!a->no_photons) {
-            compat_light = render(pov_light, opt);
-            line("refract compat light + eye pass (" + std::to_string(p.photons) + " photons)",
-                 compat_light->stats.seconds);
-        }
-        if (a->no_povray) return;
-        validation::PovrayOptions po;
-        po.executable = a->povray;
-        po.threads = a->threads;
-        po.timeout_seconds = a->timeout;
-        try {
-            const auto pr = validation::render_povray(validation::export_pov(pov), p.width, p.height, po);
-            line(pr.version + " (dispersion_samples " + std::to_string(a->samples) + ", no photons)", pr.seconds);
-            std::cout << "  ratio POV-Ray / refract compat eye pass:   " << std::setprecision(2)
-                      << pr.seconds / compat.stats.seconds << "x (target >= 10x)\n"
-                      << "  ratio POV-Ray / refract physical eye pass: " << pr.seconds / eye << "x\n";
-        } catch (const validation::PovrayError& e) {
-            std::cout << "  POV-Ray not timed: " << e.what() << "\n";
-        }
-        if (a->no_photons) return;
-        try {
-            validation::ExportOptions eo;
-            eo.photons = true;  // photons { count N } and the gem as photon target
-            eo.photon_count = p.photons;
-            const auto pr = validation::render_povray(validation::export_pov(pov_light, eo), p.width, p.height, po);
-            line(pr.version + " (same, photons count " + std::to_string(p.photons) + ")", pr.seconds);
-            std::cout << "  ratio POV-Ray photons / refract compat light + eye pass:   " << std::setprecision(2)
-                      << pr.seconds / compat_light->stats.seconds << "x (target >= 10x)\n"
-                      << "  ratio POV-Ray photons / refract physical light + eye pass: "
-                      << pr.seconds / full.stats.seconds << "x\n";
-        } catch (const validation::PovrayError& e) {
-            std::cout << "  POV-Ray with photons not timed: " << e.what() << "\n";
-        }
+        if (a->rounds == 0) a->rounds = 3;
+        diamond(p, *a, opt);
     });
 }};
 

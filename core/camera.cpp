@@ -27,8 +27,9 @@ Camera::Basis Camera::basis() const {
     return b;
 }
 
-Ray Camera::ray(double x, double y) const {
-    const Basis b = basis();
+Ray Camera::ray(double x, double y) const { return ray(basis(), x, y); }
+
+Ray Camera::ray(const Basis& b, double x, double y) const {
     const double x0 = x / width - 0.5;
     const double y0 = 0.5 - y / height;
     if (type == Type::Perspective)

@@ -27,6 +27,9 @@ struct Camera {
     // Ray through the continuous image position (x, y) in pixels, x to the right and
     // y down from the top-left corner; the centre of pixel (i, j) is (i + 0.5, j + 0.5).
     Ray ray(double x, double y) const;
+    // The same with the basis computed once (renders: basis() per sample costs a tan and
+    // two normalisations).
+    Ray ray(const Basis& b, double x, double y) const;
 };
 
 }  // namespace refract

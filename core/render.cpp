@@ -121,13 +121,13 @@ void validate(const Scene& scene) {
 
 // The primary ray of one sample of pixel (i, j): through its centre, or jittered with
 // the sample's own random stream (which the stochastic integrator then continues).
-Ray sample_ray(const Scene& scene, int i, int j, Rng& rng) {
+Ray sample_ray(const SceneTracer& tracer, int i, int j, Rng& rng) {
     double x = i + 0.5, y = j + 0.5;
-    if (scene.settings.jitter) {
+    if (tracer.settings().jitter) {
         x = i + rng.uniform();
         y = j + rng.uniform();
     }
-    return scene.camera.ray(x, y);
+    return tracer.camera_ray(x, y);
 }
 
 Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
@@ -138,7 +138,7 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
     Vec3 sum(0, 0, 0);
     for (int k = 0; k < s.samples; ++k) {
         Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-        const Ray ray = sample_ray(scene, i, j, rng);
+        const Ray ray = sample_ray(tracer, i, j, rng);
         ++stats.primary_rays;
         if (spectral) {
             sum += spectral_radiance(tracer, *spectral, ray, stats, band_light);
@@ -193,14 +193,14 @@ StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& sta
     StokesRGB sum = StokesRGB::Zero();
     for (int k = 0; k < s.samples; ++k) {
         Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-        const Ray ray = sample_ray(scene, i, j, rng);
+        const Ray ray = sample_ray(tracer, i, j, rng);
         ++stats.primary_rays;
         const EyeStokes start = camera_stokes(scene, ray);
         sum += spectral ? spectral_stokes(tracer, *spectral, ray, start, stats)
                         : fresnel_tree_stokes(tracer, ray, start, stats);
     }
     sum /= s.samples;
-    lp = linear_polarisation(sum, scene, scene.camera.ray(i + 0.5, j + 0.5));
+    lp = linear_polarisation(sum, scene, tracer.camera_ray(i + 0.5, j + 0.5));
     if (spectral) sum.row(0) = spectral->finish(sum.row(0).transpose()).transpose();
     return sum;
 }

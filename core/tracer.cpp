@@ -7,7 +7,7 @@
 
 namespace refract {
 
-SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {
+SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scene.camera.basis()) {
     // POV-Ray mode: the order of the exported scene (validation/pov_export.cpp writes the
     // opaque objects first, then the transparent ones), which is the order in which POV-Ray
     // tests them; this decides exact ties, e.g. a gem's facet lying in the floor plane,
@@ -19,6 +19,59 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {
                 order_.push_back(&obj);
     for (const Material& m : scene.materials)
         absorbing_ = absorbing_ || (!pov && m.dielectric() && m.dielectric()->absorption);
+    mesh_accel_.resize(order_.size());
+    for (size_t k = 0; k < order_.size(); ++k)
+        if (const auto* m = std::get_if<TriangleMesh>(&order_[k]->shape); m && m->triangles.size() >= MeshAccel::kMinTriangles)
+            mesh_accel_[k] = std::make_unique<MeshAccel>(*m);
+    if (order_.size() >= kBvhMinObjects) {
+        std::vector<std::optional<Bounds>> boxes;
+        for (const Object* o : order_) {
+            // A polyhedron's bounding sphere where it has one (its vertices cost O(n⁴)).
+            const auto* c = std::get_if<ConvexPolyhedron>(&o->shape);
+            if (c && c->bound_radius > 0)
+                boxes.push_back(Bounds{c->bound_center.array() - c->bound_radius, c->bound_center.array() + c->bound_radius});
+            else
+                boxes.push_back(bounds(o->shape));
+        }
+        bvh_.emplace(boxes);
+    }
+}
+
+SceneTracer::~SceneTracer() = default;
+
+std::optional<Hit> SceneTracer::intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const {
+    if (const auto& a = mesh_accel_[k]) return a->intersect(ray, t_min, t_max);
+    return refract::intersect(order_[k]->shape, ray, t_min, t_max);
+}
+
+template <class Use>
+std::optional<SceneTracer::Nearest> SceneTracer::nearest(const Ray& ray, double t_min, double t_max, Use&& use) const {
+    std::optional<Nearest> best;
+    if (!bvh_) {
+        // In order: a hit replaces the best one only when strictly nearer.
+        for (size_t k = 0; k < order_.size(); ++k) {
+            if (!use(k)) continue;
+            const auto hit = intersect_object(k, ray, t_min, t_max);
+            if (!hit) continue;
+            t_max = hit->t;
+            best = Nearest{*hit, k};
+        }
+        return best;
+    }
+    // Through the BVH, in any order, with the same result: each object is asked for hits
+    // up to and including the best t so far, and replaces it when nearer or, at equal t,
+    // first in order.
+    double t_cull = t_max;
+    bvh_->search(ray, t_min, t_cull, [&](int i) {
+        const size_t k = static_cast<size_t>(i);
+        if (!use(k)) return;
+        const double limit = best ? std::nextafter(t_cull, std::numeric_limits<double>::infinity()) : t_max;
+        const auto hit = intersect_object(k, ray, t_min, limit);
+        if (!hit || (best && hit->t == best->hit.t && k > best->k)) return;
+        t_cull = hit->t;
+        best = Nearest{*hit, k};
+    });
+    return best;
 }
 
 std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& stats) const {
@@ -27,13 +80,10 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
     // POV-Ray keeps hits with kPovMinDepth <= t < kPovMaxDistance (every ray, primary too).
     const bool pov = scene_.settings.compat == Compat::PovRay;
     const double t_min = pov ? kPovMinDepth : kEpsilon;
-    double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
-    for (const Object* o : order_) {
-        const Object& obj = *o;
-        const auto hit = refract::intersect(obj.shape, ray, t_min, t_max);
-        if (!hit) continue;
-        t_max = hit->t;
-        best = SurfaceHit{*hit, &obj, &scene_.materials[obj.material], hit->normal, true};
+    const double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
+    if (const auto n = nearest(ray, t_min, t_max, [](size_t) { return true; })) {
+        const Object& obj = *order_[n->k];
+        best = SurfaceHit{n->hit, &obj, &scene_.materials[obj.material], n->hit.normal, true};
     }
     if (best) {
         best->entering = best->hit.normal.dot(ray.dir) < 0;
@@ -78,12 +128,10 @@ Vec3 SceneTracer::light_transmittance(const Vec3& from, const Vec3& to, RenderSt
     const Vec3 delta = to - from;
     const double dist = delta.norm();
     const Ray ray{from, delta / dist};
-    for (const Object& obj : scene_.objects) {
-        if (scene_.materials[obj.material].is<material::Emissive>()) continue;
-        const auto hit = refract::intersect(obj.shape, ray, kEpsilon, dist);
-        if (hit) return Vec3(0, 0, 0);
-    }
-    return Vec3(1, 1, 1);
+    const auto blocker = nearest(ray, kEpsilon, dist, [&](size_t k) {
+        return !scene_.materials[order_[k]->material].is<material::Emissive>();
+    });
+    return blocker ? Vec3(0, 0, 0) : Vec3(1, 1, 1);
 }
 
 Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) const {
@@ -98,20 +146,12 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) cons
     Vec3 t(1, 1, 1);
     while (true) {
         const Ray ray{origin, dir};
-        std::optional<Hit> best;
-        const Material* best_m = nullptr;
-        double t_max = remaining;
-        for (const Object* o : order_) {
-            const Object& obj = *o;
-            const Material& m = scene_.materials[obj.material];
-            if (m.is<material::Emissive>()) continue;
-            const auto hit = refract::intersect(obj.shape, ray, kPovShadowTolerance, t_max);
-            if (!hit) continue;
-            t_max = hit->t;
-            best = hit;
-            best_m = &m;
-        }
-        if (!best || best->t >= remaining - kPovShadowTolerance) return t;
+        const auto n = nearest(ray, kPovShadowTolerance, remaining, [&](size_t k) {
+            return !scene_.materials[order_[k]->material].is<material::Emissive>();
+        });
+        if (!n || n->hit.t >= remaining - kPovShadowTolerance) return t;
+        const Hit* best = &n->hit;
+        const Material* best_m = &scene_.materials[order_[n->k]->material];
         const auto* glass = best_m->dielectric();
         if (!glass) return Vec3(0, 0, 0);
         t = t.cwiseProduct(glass->filter);

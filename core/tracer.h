@@ -3,8 +3,12 @@
 // opaque surfaces (the leaves of the ray tree), and the branches a surface spawns (the
 // nodes). Integrators differ only in how they walk the branches.
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
+
+#include "geometry/mesh_accel.h"
+#include "geometry/object_bvh.h"
 
 #include "core/interaction.h"
 #include "core/render.h"
@@ -14,12 +18,19 @@ namespace refract {
 
 class SceneTracer {
 public:
+    // Builds the search structures: Embree's BVH for each mesh of kMinTriangles or more
+    // (geometry/mesh_accel.h), and a BVH over the objects when there are kBvhMinObjects or
+    // more (geometry/object_bvh.h). The scene must outlive the tracer, unchanged.
     explicit SceneTracer(const Scene& scene);
+    ~SceneTracer();
+    static constexpr size_t kBvhMinObjects = 8;
 
     const Scene& scene() const { return scene_; }
     const RenderSettings& settings() const { return scene_.settings; }
 
     std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats) const;
+    // The camera's ray through image position (x, y) (Camera::ray, its basis computed once).
+    Ray camera_ray(double x, double y) const { return scene_.camera.ray(camera_basis_, x, y); }
     Vec3 background(const Vec3& dir) const;
 
     // The interaction at a hit (core/interaction.h): leaves (diffuse, emissive) end the
@@ -63,13 +74,25 @@ public:
     static inline const Vec3 kPovGreyscale{0.297, 0.589, 0.114};
 
 private:
+    // The nearest hit over the objects (index into order_) for which `use(k)` holds, with
+    // t in (t_min, t_max); on an exact tie the object first in order_.
+    struct Nearest {
+        Hit hit;
+        size_t k;
+    };
+    template <class Use>
+    std::optional<Nearest> nearest(const Ray& ray, double t_min, double t_max, Use&& use) const;
+    std::optional<Hit> intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const;
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
     Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to) const;
     const Scene& scene_;
     // The order in which intersect() tests the objects; a hit replaces the best one only
     // when strictly nearer, so on an exact tie (coincident surfaces) the first one wins.
     std::vector<const Object*> order_;
+    std::vector<std::unique_ptr<MeshAccel>> mesh_accel_;  // per entry of order_, null when unused
+    std::optional<ObjectBvh> bvh_;                         // over order_'s indices
     bool absorbing_ = false;
+    Camera::Basis camera_basis_;
 };
 
 }  // namespace refract

@@ -135,7 +135,7 @@ std::uint64_t count_tir_nodes(const Scene& scene) {
     TirCounter counter;
     for (int j = 0; j < scene.camera.height; ++j)
         for (int i = 0; i < scene.camera.width; ++i) {
-            RayTreeWalker::List list{TreeEntry{scene.camera.ray(i + 0.5, j + 0.5), Vec3(1, 1, 1)}};
+            RayTreeWalker::List list{TreeEntry{tracer.camera_ray(i + 0.5, j + 0.5), Vec3(1, 1, 1)}};
             walker.walk(list, counter);
         }
     return counter.tir;

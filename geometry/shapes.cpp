@@ -39,29 +39,40 @@ std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double 
     return Hit{t, r.at(t), p.normal, -1};
 }
 
+std::optional<TriangleT> triangle_t(const Vec3& a, const Vec3& e1, const Vec3& e2, const Ray& r) {
+    // Möller–Trumbore.
+    const Vec3 pv = r.dir.cross(e2);
+    const double det = e1.dot(pv);
+    if (det == 0) return std::nullopt;
+    const double inv = 1.0 / det;
+    const Vec3 tv = r.origin - a;
+    const Vec3 qv = tv.cross(e1);
+    return TriangleT{e2.dot(qv) * inv, tv.dot(pv) * inv, r.dir.dot(qv) * inv};
+}
+
+std::optional<TriangleT> triangle_t(const TriangleMesh& m, size_t k, const Ray& r) {
+    const auto& tri = m.triangles[k];
+    const Vec3& a = m.vertices[tri[0]];
+    return triangle_t(a, m.vertices[tri[1]] - a, m.vertices[tri[2]] - a, r);
+}
+
+Vec3 triangle_normal(const TriangleMesh& m, size_t k) {
+    const auto& tri = m.triangles[k];
+    const Vec3& a = m.vertices[tri[0]];
+    return (m.vertices[tri[1]] - a).cross(m.vertices[tri[2]] - a).normalized();
+}
+
 std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, double t_max) {
-    // Möller–Trumbore, nearest over all triangles.
+    // Nearest over all triangles, in order (the reference geometry/mesh_accel.h is tested
+    // against; the tracer uses that one for meshes of more than a few triangles).
     std::optional<Hit> best;
     double t_best = t_max;
     for (size_t k = 0; k < m.triangles.size(); ++k) {
-        const auto& tri = m.triangles[k];
-        const Vec3& a = m.vertices[tri[0]];
-        const Vec3 e1 = m.vertices[tri[1]] - a;
-        const Vec3 e2 = m.vertices[tri[2]] - a;
-        const Vec3 pv = r.dir.cross(e2);
-        const double det = e1.dot(pv);
-        if (det == 0) continue;
-        const double inv = 1.0 / det;
-        const Vec3 tv = r.origin - a;
-        const double u = tv.dot(pv) * inv;
-        if (u < 0 || u > 1) continue;
-        const Vec3 qv = tv.cross(e1);
-        const double v = r.dir.dot(qv) * inv;
-        if (v < 0 || u + v > 1) continue;
-        const double t = e2.dot(qv) * inv;
-        if (!(t > t_min && t < t_best)) continue;  // NaN is no hit
-        t_best = t;
-        best = Hit{t, r.at(t), e1.cross(e2).normalized(), static_cast<int>(k)};
+        const auto h = triangle_t(m, k, r);
+        if (!h || h->u < 0 || h->u > 1 || h->v < 0 || h->u + h->v > 1) continue;
+        if (!(h->t > t_min && h->t < t_best)) continue;  // NaN is no hit
+        t_best = h->t;
+        best = Hit{h->t, r.at(h->t), triangle_normal(m, k), static_cast<int>(k)};
     }
     return best;
 }
@@ -247,6 +258,40 @@ std::vector<Vec3> vertices(const ConvexPolyhedron& c) {
             }
     return v;
 }
+TriangleMesh mesh_of(const ConvexPolyhedron& c) {
+    // The corners without repeats (a corner where more than three planes meet is found
+    // once per triple), then per plane its corners in angular order, fanned.
+    TriangleMesh m;
+    const std::vector<Vec3> corners = vertices(c);
+    double scale = 0;
+    for (const Vec3& p : corners) scale = std::fmax(scale, p.cwiseAbs().maxCoeff());
+    const double tol = 1e-9 * (1 + scale);
+    for (const Vec3& p : corners) {
+        bool seen = false;
+        for (const Vec3& q : m.vertices) seen = seen || (p - q).cwiseAbs().maxCoeff() <= tol;
+        if (!seen) m.vertices.push_back(p);
+    }
+    for (const Plane& pl : c.planes) {
+        std::vector<int> on;
+        Vec3 centre(0, 0, 0);
+        for (size_t i = 0; i < m.vertices.size(); ++i)
+            if (std::abs(pl.normal.dot(m.vertices[i]) - pl.offset) <= tol) {
+                on.push_back(static_cast<int>(i));
+                centre += m.vertices[i];
+            }
+        if (on.size() < 3) continue;  // a plane touching the solid in an edge or a point
+        centre /= static_cast<double>(on.size());
+        const Vec3 u = pl.normal.unitOrthogonal(), w = pl.normal.cross(u);  // u × w = normal
+        const auto angle = [&](int i) {
+            const Vec3 d = m.vertices[static_cast<size_t>(i)] - centre;
+            return std::atan2(d.dot(w), d.dot(u));
+        };
+        std::sort(on.begin(), on.end(), [&](int a, int b) { return angle(a) < angle(b); });
+        for (size_t k = 1; k + 1 < on.size(); ++k) m.triangles.push_back({on[0], on[k], on[k + 1]});
+    }
+    return m;
+}
+
 std::vector<Vec3> vertices(const Shape& s) {
     return std::visit([](const auto& x) { return vertices(x); }, s);
 }

@@ -2,6 +2,7 @@
 // Shapes and their ray intersections. Every intersection returns the nearest hit with
 // t in (t_min, t_max) and the *outward* geometric normal of the surface (for a sphere of
 // negative radius the outward normal points to the centre: RTIOW's hollow sphere).
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <variant>
@@ -61,6 +62,18 @@ std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_m
 std::optional<Hit> intersect_scalar(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const Shape& s, const Ray& r, double t_min, double t_max);
 
+// Möller–Trumbore for triangle k of a mesh, in double: the ray's t at the triangle's
+// plane and the barycentrics (u, v) of the point (inside: u, v >= 0, u + v <= 1); empty
+// when the ray is parallel to the plane. The one triangle test of the project (the linear
+// search above and the Embree refinement in geometry/mesh_accel.h both use it).
+struct TriangleT {
+    double t, u, v;
+};
+std::optional<TriangleT> triangle_t(const TriangleMesh& m, std::size_t k, const Ray& r);
+// The same for the triangle with corner a and edges e1 = b − a, e2 = c − a.
+std::optional<TriangleT> triangle_t(const Vec3& a, const Vec3& e1, const Vec3& e2, const Ray& r);
+Vec3 triangle_normal(const TriangleMesh& m, std::size_t k);  // outward unit normal
+
 // Axis-aligned bounds (used for culling and for export); empty optional when unbounded.
 struct Bounds {
     Vec3 lo, hi;
@@ -91,5 +104,10 @@ std::vector<Vec3> vertices(const Plane& p);
 std::vector<Vec3> vertices(const TriangleMesh& m);
 std::vector<Vec3> vertices(const ConvexPolyhedron& c);
 std::vector<Vec3> vertices(const Shape& s);
+
+// A bounded convex polyhedron as a closed triangle mesh: its corners once each, every
+// face fanned from one corner, counter-clockwise seen from outside (the same solid for
+// renderers that take meshes, e.g. POV-Ray's mesh2). Empty when unbounded.
+TriangleMesh mesh_of(const ConvexPolyhedron& c);
 
 }  // namespace refract

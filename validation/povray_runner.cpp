@@ -16,6 +16,7 @@
 
 #include "geometry/error.h"
 #include "validation/files.h"
+#include "validation/process.h"
 
 namespace refract::validation {
 namespace fs = std::filesystem;
@@ -135,60 +136,26 @@ PovrayRender render_povray(const std::string& pov_source, int width, int height,
     const std::string env_path = std::string("PATH=") + (path_env ? path_env : "/usr/bin:/bin");
     const std::string env_lang = "LC_ALL=C";
 
-    // Everything the child needs is built before fork (no allocation after it).
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    char* envp[] = {const_cast<char*>(env_home.c_str()), const_cast<char*>(env_path.c_str()),
-                    const_cast<char*>(env_lang.c_str()), nullptr};
-    const std::string dir_s = dir.path().string(), log_s = log_path.string();
-
-    const auto t0 = std::chrono::steady_clock::now();
-    const pid_t pid = ::fork();
-    if (pid < 0) throw PovrayError(std::string("cannot start povray: ") + std::strerror(errno));
-    if (pid == 0) {
-        ::setpgid(0, 0);  // its own process group, so a time-out kills it whole
-        if (::chdir(dir_s.c_str()) != 0) ::_exit(126);
-        const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (fd >= 0) {
-            ::dup2(fd, 1);
-            ::dup2(fd, 2);
-            ::close(fd);
-        }
-        const int devnull = ::open("/dev/null", O_RDONLY);
-        if (devnull >= 0) ::dup2(devnull, 0);
-        ::execve(exe.c_str(), argv.data(), envp);
-        ::_exit(127);
-    }
-    ::setpgid(pid, pid);
-    int status = 0;
-    bool timed_out = false;
-    while (true) {
-        const pid_t r = ::waitpid(pid, &status, WNOHANG);
-        if (r == pid) break;
-        if (r < 0 && errno != EINTR) throw PovrayError(std::string("waiting for povray: ") + std::strerror(errno));
-        const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (el > opt.timeout_seconds) {
-            ::kill(-pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            timed_out = true;
-            break;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    ProcessOptions po;
+    po.dir = dir.path().string();
+    po.inherit_env = false;
+    po.env = {env_home, env_path, env_lang};
+    po.stdout_path = log_path.string();
+    po.timeout_seconds = opt.timeout_seconds;
+    const ProcessResult run = run_process(args, po);
     PovrayRender out;
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.seconds = run.seconds;
+    out.cpu_seconds = run.cpu_seconds;
     std::string log;
     try {
         log = read_text_file(log_path.string());
     } catch (const InputError&) {
     }
     out.version = version_line(log);
-    if (timed_out)
+    if (run.timed_out)
         throw PovrayError("povray timed out after " + std::to_string(static_cast<int>(opt.timeout_seconds)) + " s", tail(log, 20));
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::string why = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
-                                            : "signal " + std::to_string(WTERMSIG(status));
+    if (!run.ok()) {
+        const std::string why = run.why();
         const std::string err = first_error_line(log);
         throw PovrayError("povray failed (" + why + ")" + (err.empty() ? "" : ": " + err), tail(log, 20));
     }

@@ -34,6 +34,7 @@ struct PovrayOptions {
 struct PovrayRender {
     Image image;            // linear RGB as written by POV-Ray
     double seconds = 0;     // wall time of the POV-Ray run
+    double cpu_seconds = 0; // its CPU time (user + system, every thread)
     std::string version;    // "POV-Ray 3.7.0.10..." from its banner
 };
 

@@ -1,0 +1,135 @@
+// refract bench --kernels / --meshes: intersection throughput on fixed ray sets, one
+// thread, every variant on the same rays, in paired rounds.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli/bench_sections.h"
+#include "cli/bench_timing.h"
+#include "geometry/gem/brilliant.h"
+#include "geometry/icosphere.h"
+#include "geometry/mesh_accel.h"
+#include "geometry/plane_set.h"
+
+namespace refract::cli::bench {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Vec3 random_direction(std::mt19937_64& g) {
+    std::normal_distribution<double> n;
+    for (;;) {
+        const Vec3 v(n(g), n(g), n(g));
+        if (v.norm() > 1e-6) return v.normalized();
+    }
+}
+
+// A ray and the near end of its window (0 from outside, 1e-6 from a surface or inside).
+struct Query {
+    Ray ray;
+    double t_min;
+};
+
+// Rays from a sphere of radius 3·r around `centre` aimed at random points of the ball of
+// radius r, and as many from random points inside the ball in random directions.
+std::vector<Query> ball_rays(const Vec3& centre, double r, int n, std::uint64_t seed) {
+    std::mt19937_64 g(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<Query> q;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 from = centre + 3 * r * random_direction(g);
+        const Vec3 to = centre + r * std::cbrt(u(g)) * random_direction(g);
+        q.push_back({Ray{from, (to - from).normalized()}, 0.0});
+    }
+    for (int i = 0; i < n; ++i) q.push_back({Ray{centre + r * std::cbrt(u(g)) * random_direction(g), random_direction(g)}, 1e-6});
+    return q;
+}
+
+// Runs `hit` over the rays; returns the number of hits (every variant must find as many,
+// up to edge rays).
+template <class F>
+long run_rays(const std::vector<Query>& rays, F&& hit) {
+    long n = 0;
+    for (const Query& q : rays) n += hit(q);
+    return n;
+}
+
+void table_header(const char* unit) {
+    std::printf("  %-40s %14s %14s %14s\n", "", (std::string("median ") + unit).c_str(),
+                (std::string("best ") + unit).c_str(), "CPU median");
+}
+
+void table_row(const std::string& name, const std::vector<double>& wall, const std::vector<double>& cpu, double rays,
+               long hits) {
+    std::printf("  %-40s %14.2f %14.2f %14.2f   (%ld hits)\n", name.c_str(), rays / median(wall) / 1e6,
+                rays / minimum(wall) / 1e6, rays / median(cpu) / 1e6, hits);
+}
+
+}  // namespace
+
+void kernels(int rounds) {
+    Gem gem = build_brilliant(BrilliantCut{});
+    ConvexPolyhedron solid = gem.solid;
+    set_bound(solid, gem.mesh.vertices);
+    const MeshAccel accel(gem.mesh), plain(gem.mesh, MeshAccel::Mode::plain);
+    const std::vector<Query> rays = ball_rays(solid.bound_center, solid.bound_radius, 500000, 1);
+    std::printf("Round brilliant: %zu planes (plane set), %zu triangles (mesh); %zu rays, half from outside aimed at its "
+                "bounding sphere, half from inside it in random directions; one thread; %d paired rounds\n",
+                solid.planes.size(), gem.mesh.triangles.size(), rays.size(), rounds);
+    std::printf("  plane-set kernel variant dispatched: %s\n", slab_isa_name(slab_isa()));
+    print_load("before");
+    const std::vector<std::string> names = {"plane set, scalar loop", "plane set, vectorised (dispatched)",
+                                            "mesh, Embree alone (float)", "mesh, Embree + double refinement"};
+    std::vector<long> hits(names.size());
+    const Paired p = paired_runs(names.size(), rounds, [&](size_t k) {
+        switch (k) {
+            case 0: hits[k] = run_rays(rays, [&](const Query& q) { return intersect_scalar(solid, q.ray, q.t_min, kInf).has_value(); }); break;
+            case 1: hits[k] = run_rays(rays, [&](const Query& q) { return intersect(solid, q.ray, q.t_min, kInf).has_value(); }); break;
+            case 2: hits[k] = run_rays(rays, [&](const Query& q) { return plain.intersect_float(q.ray, q.t_min, kInf).triangle >= 0; }); break;
+            default: hits[k] = run_rays(rays, [&](const Query& q) { return accel.intersect(q.ray, q.t_min, kInf).has_value(); });
+        }
+    });
+    table_header("Mrays/s");
+    for (size_t k = 0; k < names.size(); ++k) table_row(names[k], p.wall[k], p.cpu[k], static_cast<double>(rays.size()), hits[k]);
+    std::printf("  vectorised plane set / Embree alone, paired medians: %.2fx (target: plane set >= 20 Mrays/s per core)\n",
+                median(p.wall[2]) / median(p.wall[1]));
+    print_load("after");
+}
+
+void meshes(int rounds) {
+    std::printf("Icospheres (radius 1), 80 to 327 680 triangles; per mesh 200 000 rays, half from outside aimed at the "
+                "ball, half from inside; one thread; %d paired rounds; ns per ray (wall, median / best)\n", rounds);
+    print_load("before");
+    const std::vector<Query> rays = ball_rays(Vec3(0, 0, 0), 1.0, 100000, 2);
+    const std::vector<Query> few(rays.begin(), rays.begin() + 2000);
+    std::printf("  %10s %22s %22s %10s %22s\n", "triangles", "refract (Embree+refine)", "Embree alone", "ratio",
+                "linear search");
+    for (int s = 1; s <= 7; ++s) {
+        const TriangleMesh m = icosphere(s);
+        const MeshAccel accel(m), plain(m, MeshAccel::Mode::plain);
+        const bool linear = m.triangles.size() <= 5120;
+        const size_t variants = linear ? 3 : 2;
+        long hits[3] = {0, 0, 0};
+        const Paired p = paired_runs(variants, rounds, [&](size_t k) {
+            if (k == 0) hits[0] = run_rays(rays, [&](const Query& q) { return accel.intersect(q.ray, q.t_min, kInf).has_value(); });
+            if (k == 1) hits[1] = run_rays(rays, [&](const Query& q) { return plain.intersect_float(q.ray, q.t_min, kInf).triangle >= 0; });
+            if (k == 2) hits[2] = run_rays(few, [&](const Query& q) { return intersect(m, q.ray, q.t_min, kInf).has_value(); });
+        });
+        const double n = static_cast<double>(rays.size());
+        char lin[64] = "—";
+        if (linear)
+            std::snprintf(lin, sizeof lin, "%9.0f / %9.0f", 1e9 * median(p.wall[2]) / few.size(), 1e9 * minimum(p.wall[2]) / few.size());
+        std::printf("  %10zu %10.1f / %9.1f %10.1f / %9.1f %9.2fx %22s   (hits %ld / %ld)\n", m.triangles.size(),
+                    1e9 * median(p.wall[0]) / n, 1e9 * minimum(p.wall[0]) / n, 1e9 * median(p.wall[1]) / n,
+                    1e9 * minimum(p.wall[1]) / n, median(p.wall[0]) / median(p.wall[1]), lin, hits[0], hits[1]);
+    }
+    std::printf("  (ratio: refract / Embree alone, paired medians; target <= 1.5x, cost logarithmic in triangles)\n");
+    print_load("after");
+}
+
+}  // namespace refract::cli::bench

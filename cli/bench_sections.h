@@ -1,0 +1,22 @@
+#pragma once
+// The sections of `refract bench` besides the 1998 diamond (cli/bench.cpp), each printing
+// paired timings (docs/performance.md).
+#include <string>
+
+namespace refract::cli::bench {
+
+// The round brilliant's intersection, on the same rays: the plane-set kernel (scalar loop
+// and the vectorised one) against Embree on the gem's triangles, alone and with refract's
+// double-precision refinement.
+void kernels(int rounds);
+
+// Triangle meshes from 80 to 327 680 triangles (icospheres): refract's mesh search
+// (Embree + refinement) against Embree alone on the same rays, and the linear search
+// where it finishes.
+void meshes(int rounds);
+
+// The RTIOW dielectric chapter's last scene: refract's stochastic integrator against a
+// build of the book's own code at `book` (an executable writing its PPM to stdout).
+void rtiow(const std::string& book, int rounds);
+
+}  // namespace refract::cli::bench
