@@ -6,8 +6,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
+#include "core/image_io.h"
 #include "geometry/atomic_file.h"
 #include "geometry/error.h"
 
@@ -27,8 +26,10 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-// Writes through a TempFile beside `path` (geometry/atomic_file.h).
-void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* data);
+// Writes through a TempFile beside `path` (geometry/atomic_file.h) with the image module.
+void write_atomically(const std::string& path, int width, int height, int nchannels, PixelType type, const void* data,
+                      const std::vector<std::string>& names = {}, const std::string& colorspace = {},
+                      const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
 }  // namespace
 
@@ -39,7 +40,7 @@ void check_image_path(const std::string& path) {
     if (!linear_float && !encoded)
         throw InputError(path + ": unknown image extension '" + ext +
                          "' (use .exr, .hdr, .tif for linear, .png, .jpg, .ppm, .bmp for sRGB)");
-    if (!OIIO::ImageOutput::create(path))
+    if (!image_io().can_write(path))
         throw InputError(path + ": this OpenImageIO has no writer for '" + ext + "' files");
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -55,32 +56,21 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
     const std::string ext = lower_extension(path);
     const bool linear_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
     const size_t n = img.rgb.size();
-    OIIO::ImageSpec spec;
-    std::vector<float> fbuf;
-    std::vector<unsigned short> sbuf;
-    std::vector<unsigned char> bbuf;
-    const void* data = nullptr;
     if (linear_float) {
-        spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT);
-        fbuf.resize(n);
-        for (size_t k = 0; k < n; ++k) fbuf[k] = static_cast<float>(img.rgb[k]);
-        data = fbuf.data();
+        std::vector<float> buf(n);
+        for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(img.rgb[k]);
+        write_atomically(path, img.width, img.height, 3, PixelType::float32, buf.data());
     } else if (ext == ".png" && opt.linear16) {
-        spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::UINT16);
-        spec.attribute("oiio:ColorSpace", "Linear");
-        sbuf.resize(n);
+        std::vector<unsigned short> buf(n);
         for (size_t k = 0; k < n; ++k)
-            sbuf[k] = static_cast<unsigned short>(std::lround(std::clamp(img.rgb[k], 0.0, 1.0) * 65535.0));
-        data = sbuf.data();
+            buf[k] = static_cast<unsigned short>(std::lround(std::clamp(img.rgb[k], 0.0, 1.0) * 65535.0));
+        write_atomically(path, img.width, img.height, 3, PixelType::uint16, buf.data(), {}, "Linear");
     } else {
-        spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", "sRGB");
-        bbuf.resize(n);
+        std::vector<unsigned char> buf(n);
         for (size_t k = 0; k < n; ++k)
-            bbuf[k] = static_cast<unsigned char>(std::lround(srgb_encode(img.rgb[k]) * 255.0));
-        data = bbuf.data();
+            buf[k] = static_cast<unsigned char>(std::lround(srgb_encode(img.rgb[k]) * 255.0));
+        write_atomically(path, img.width, img.height, 3, PixelType::uint8, buf.data(), {}, "sRGB");
     }
-    write_atomically(path, spec, data);
 }
 
 void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
@@ -91,23 +81,21 @@ void write_channels(const std::string& path, int width, int height, const std::v
     const size_t n = static_cast<size_t>(width) * height * names.size();
     if (width <= 0 || height <= 0 || names.empty() || data.size() != n)
         throw InputError(path + ": channel data do not match the image size");
-    OIIO::ImageSpec spec(width, height, static_cast<int>(names.size()), OIIO::TypeDesc::FLOAT);
-    spec.channelnames = names;
-    for (const auto& [name, value] : attributes) spec.attribute(name, value);
     std::vector<float> buf(n);
     for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(data[k]);
-    write_atomically(path, spec, buf.data());
+    write_atomically(path, width, height, static_cast<int>(names.size()), PixelType::float32, buf.data(), names, {},
+                     attributes);
 }
 
 namespace {
 
-void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* data) {
+void write_atomically(const std::string& path, int width, int height, int nchannels, PixelType type, const void* data,
+                      const std::vector<std::string>& names, const std::string& colorspace,
+                      const std::vector<std::pair<std::string, std::string>>& attributes) {
+    const ImageIoModule& io = image_io();
     // The temporary keeps the extension so that OpenImageIO picks the right writer.
     TempFile tmp(path, true);
-    auto out = OIIO::ImageOutput::create(tmp.path());
-    if (!out) throw InputError(path + ": no image writer for this extension");
-    if (!(out->open(tmp.path(), spec) && out->write_image(spec.format, data) && out->close()))
-        throw InputError(path + ": cannot write image: " + out->geterror());
+    throw_if_failed(io.write(tmp.path(), width, height, nchannels, type, data, names, colorspace, attributes), path);
     tmp.commit();
 }
 
@@ -116,31 +104,33 @@ void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, cons
 namespace {
 
 // Images read are bounded as images rendered are (docs/limits.md): before any allocation.
-void check_read_size(const std::string& path, const OIIO::ImageSpec& spec) {
-    const double values = static_cast<double>(spec.width) * spec.height * spec.nchannels;
-    if (spec.width <= 0 || spec.height <= 0 || static_cast<double>(spec.width) * spec.height > 67108864.0 ||
-        spec.nchannels <= 0 || values > 268435456.0)
-        throw InputError(path + ": a " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " image of " +
-                         std::to_string(spec.nchannels) + " channels is beyond the limit of 2^26 pixels and 2^28 values");
+// The message after "<path>: ", empty when within the limits.
+std::string check_read_size(const ImageData& h) {
+    const double values = static_cast<double>(h.width) * h.height * h.nchannels;
+    if (h.width <= 0 || h.height <= 0 || static_cast<double>(h.width) * h.height > 67108864.0 || h.nchannels <= 0 ||
+        values > 268435456.0)
+        return "a " + std::to_string(h.width) + "x" + std::to_string(h.height) + " image of " +
+               std::to_string(h.nchannels) + " channels is beyond the limit of 2^26 pixels and 2^28 values";
+    return {};
+}
+
+ImageData read_data(const std::string& path) {
+    ImageData d;
+    throw_if_failed(image_io().read(path, d, check_read_size), path);
+    return d;
 }
 
 }  // namespace
 
 Image read_image(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    check_read_size(path, spec);
-    Image img(spec.width, spec.height);
-    std::vector<float> buf(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
-        throw InputError(path + ": cannot read image: " + in->geterror());
-    for (int j = 0; j < spec.height; ++j)
-        for (int i = 0; i < spec.width; ++i) {
-            const size_t k = (static_cast<size_t>(j) * spec.width + i) * spec.nchannels;
-            const double r = buf[k];
-            const double g = spec.nchannels >= 3 ? buf[k + 1] : r;
-            const double b = spec.nchannels >= 3 ? buf[k + 2] : r;
+    const ImageData d = read_data(path);
+    Image img(d.width, d.height);
+    for (int j = 0; j < d.height; ++j)
+        for (int i = 0; i < d.width; ++i) {
+            const size_t k = (static_cast<size_t>(j) * d.width + i) * d.nchannels;
+            const double r = d.data[k];
+            const double g = d.nchannels >= 3 ? d.data[k + 1] : r;
+            const double b = d.nchannels >= 3 ? d.data[k + 2] : r;
             img.set(i, j, {r, g, b});
         }
     return img;
@@ -159,20 +149,13 @@ int Channels::channel(const std::string& name) const {
 }
 
 Channels read_channels(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    check_read_size(path, spec);
+    ImageData d = read_data(path);
     Channels c;
-    c.width = spec.width;
-    c.height = spec.height;
-    c.names = spec.channelnames;
-    std::vector<float> buf(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
-        throw InputError(path + ": cannot read image: " + in->geterror());
-    c.data.assign(buf.begin(), buf.end());
-    for (const auto& p : spec.extra_attribs)
-        if (p.type() == OIIO::TypeDesc::STRING) c.attributes.emplace_back(p.name().string(), p.get_string());
+    c.width = d.width;
+    c.height = d.height;
+    c.names = std::move(d.names);
+    c.data.assign(d.data.begin(), d.data.end());
+    c.attributes = std::move(d.attributes);
     return c;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// Linear RGB images in double precision; files go through OpenImageIO. The format is
-// chosen by the extension: .exr/.hdr/.tif (linear, float), .png/.jpg/.ppm/.bmp (sRGB-encoded 8-bit,
-// or 16-bit linear for .png with `linear16`).
+// Linear RGB images in double precision; files go through OpenImageIO, in the image module
+// that the first image operation loads (core/image_io.h; InputError if it cannot be loaded).
+// The format is chosen by the extension: .exr/.hdr/.tif (linear, float), .png/.jpg/.ppm/.bmp
+// (sRGB-encoded 8-bit, or 16-bit linear for .png with `linear16`).
 #include <string>
 #include <utility>
 #include <vector>

@@ -17,9 +17,10 @@ struct Run {
     std::string err;
 };
 
-Run run(const std::string& args, const fs::path& dir) {
+// `env`: variable assignments put before the command (VAR=value ...).
+Run run(const std::string& args, const fs::path& dir, const std::string& env = "") {
     const fs::path err = dir / "stderr.txt";
-    const std::string cmd = std::string(REFRACT_EXE) + " " + args + " 2>" + err.string() + " >/dev/null";
+    const std::string cmd = env + " " + REFRACT_EXE + " " + args + " 2>" + err.string() + " >/dev/null";
     const int status = std::system(cmd.c_str());
     std::ifstream f(err);
     std::stringstream s;
@@ -147,6 +148,23 @@ TEST_CASE("Output paths are checked before the work: a missing directory, a dire
     const Run d = run("render " + scene + " -o " + (dir / "adir.exr").string(), dir);
     CHECK(d.code == 2);
     CHECK(d.err.find("is a directory") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("The image module is loaded only for images: --help and trace run without it, and a module that cannot "
+          "be loaded is bad input (exit 2), writing nothing",
+          "[cli][errors]") {
+    const fs::path dir = fresh_dir("module");
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}]})";
+    const std::string scene = (dir / "s.json").string();
+    const std::string missing = "REFRACT_IMAGE_IO=" + (dir / "missing.so").string();
+    CHECK(run("--help", dir, missing).code == 0);
+    CHECK(run("trace " + scene + " --pixel 2 1", dir, missing).code == 0);
+    for (const char* out : {"out.png", "out.exr"}) {
+        check_refused(run("render " + scene + " -o " + (dir / out).string(), dir, missing), "image module");
+        CHECK_FALSE(fs::exists(dir / out));
+    }
     fs::remove_all(dir);
 }
 

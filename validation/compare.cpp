@@ -6,31 +6,12 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
+#include "core/image_io.h"
 #include "geometry/atomic_file.h"
 #include "geometry/error.h"
 
 namespace refract::validation {
 namespace {
-
-namespace IBA = OIIO::ImageBufAlgo;
-
-OIIO::ImageBuf to_buf(const Image& img) {
-    OIIO::ImageBuf buf(OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT));
-    buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::DOUBLE, img.rgb.data());
-    return buf;
-}
-
-Image from_buf(const OIIO::ImageBuf& buf) {
-    const OIIO::ImageSpec& s = buf.spec();
-    Image img(s.width, s.height);
-    OIIO::ROI roi = buf.roi();
-    roi.chend = 3;
-    buf.get_pixels(roi, OIIO::TypeDesc::DOUBLE, img.rgb.data());
-    return img;
-}
 
 void same_size(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height)
@@ -42,39 +23,32 @@ void same_size(const Image& a, const Image& b) {
 
 ImageDifference compare_images(const Image& a, const Image& b, double tolerance) {
     same_size(a, b);
-    const auto r = IBA::compare(to_buf(a), to_buf(b), static_cast<float>(tolerance), static_cast<float>(tolerance));
-    // (r.error is also set when any pixel fails the threshold: not an error here.)
+    CompareStats r;  // the image module's ImageBufAlgo::compare (core/image_io.h)
+    throw_if_failed(image_io().compare(a.rgb.data(), b.rgb.data(), a.width, a.height, tolerance, r), "");
     ImageDifference d;
     d.rmse = r.rms_error;
-    d.max_error = r.maxerror;
-    d.mean_error = r.meanerror;
+    d.max_error = r.max_error;
+    d.mean_error = r.mean_error;
     d.psnr = r.rms_error > 0 ? 20.0 * std::log10(1.0 / r.rms_error) : INFINITY;
-    d.max_x = r.maxx;
-    d.max_y = r.maxy;
+    d.max_x = r.max_x;
+    d.max_y = r.max_y;
     d.pixels = static_cast<long long>(a.width) * a.height;
-    d.pixels_over = static_cast<long long>(r.nfail);
+    d.pixels_over = r.nfail;
     d.fraction_over = d.pixels > 0 ? static_cast<double>(d.pixels_over) / d.pixels : 0.0;
     return d;
 }
 
 Image clamp01(const Image& img) {
-    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-    return from_buf(IBA::clamp(to_buf(img), lo, hi));
+    Image out(img.width, img.height);
+    throw_if_failed(image_io().clamp01(img.rgb.data(), img.width, img.height, out.rgb.data()), "");
+    return out;
 }
 
 void write_heatmap(const std::string& path, const Image& a, const Image& b) {
     same_size(a, b);
-    OIIO::ImageBuf diff = IBA::maxchan(IBA::absdiff(to_buf(a), to_buf(b)));
-    // Log scale (OpenImageIO has no log operator): 1e-6 -> 0, 1e-1 -> 1.
-    for (OIIO::ImageBuf::Iterator<float> it(diff); !it.done(); ++it) {
-        const float v = it[0];
-        it[0] = v <= 1e-6f ? 0.0f : std::clamp((std::log10(v) + 6.0f) / 5.0f, 0.0f, 1.0f);
-    }
-    OIIO::ImageBuf heat = IBA::color_map(diff, 0, "inferno");
-    if (heat.has_error()) throw InputError(path + ": cannot build heat map: " + heat.geterror());
+    const ImageIoModule& io = image_io();
     TempFile tmp(path, true);  // the extension picks the writer
-    heat.set_write_format(OIIO::TypeDesc::UINT8);
-    if (!heat.write(tmp.path())) throw InputError(path + ": cannot write heat map: " + heat.geterror());
+    throw_if_failed(io.heatmap(a.rgb.data(), b.rgb.data(), a.width, a.height, tmp.path()), path);
     tmp.commit();
 }
 
