@@ -30,7 +30,7 @@ struct Args {
     double timeout = 900;
     bool no_povray = false;
     int polarisation_pairs = 0;
-    bool kernels = false, meshes = false;
+    bool kernels = false, meshes = false, objects = false;
     std::string rtiow;
     int rounds = 0;  // 0: 5 for --kernels / --meshes, 3 for the diamond
 };
@@ -198,12 +198,14 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_flag("--kernels", a->kernels,
                   "Only the round brilliant's intersection: plane-set kernel against Embree on its triangles, same rays");
     sub->add_flag("--meshes", a->meshes, "Only the mesh search, 80 to 327 680 triangles, against Embree alone");
+    sub->add_flag("--objects", a->objects, "Only the nearest-hit search over 10 to 10 000 spheres, BVH against linear");
     sub->add_option("--rtiow", a->rtiow,
                     "Only the RTIOW chapter scene against a build of the book's code at PATH (docs/performance.md)");
     sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
-        if (a->kernels || a->meshes || !a->rtiow.empty()) {
+        if (a->kernels || a->meshes || a->objects || !a->rtiow.empty()) {
+            if (a->objects) cli::bench::objects(a->rounds > 0 ? a->rounds : 5);
             if (!a->rtiow.empty()) cli::bench::rtiow(a->rtiow, a->rounds > 0 ? a->rounds : 3);
             if (a->kernels) cli::bench::kernels(a->rounds > 0 ? a->rounds : 5);
             if (a->meshes) cli::bench::meshes(a->rounds > 0 ? a->rounds : 5);

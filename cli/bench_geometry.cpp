@@ -10,6 +10,7 @@
 
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
+#include "core/tracer.h"
 #include "geometry/gem/brilliant.h"
 #include "geometry/icosphere.h"
 #include "geometry/mesh_accel.h"
@@ -129,6 +130,51 @@ void meshes(int rounds) {
                     1e9 * minimum(p.wall[1]) / n, median(p.wall[0]) / median(p.wall[1]), lin, hits[0], hits[1]);
     }
     std::printf("  (ratio: refract / Embree alone, paired medians; target <= 1.5x, cost logarithmic in triangles)\n");
+    print_load("after");
+}
+
+void objects(int rounds) {
+    std::printf("Scenes of N random spheres (radius 0.05-0.6) in a cube of edge 20, and a floor plane; 100 000 rays from "
+                "random points in random directions; one thread; %d paired rounds; ns per nearest-hit search (wall, "
+                "median / best)\n", rounds);
+    print_load("before");
+    std::printf("  %8s %24s %24s %10s\n", "objects", "tracer (object BVH)", "linear search", "ratio");
+    for (int count : {10, 100, 1000, 10000}) {
+        Scene s;
+        s.materials.push_back({"white", material::Diffuse{}});
+        std::mt19937_64 g(static_cast<std::uint64_t>(count));
+        std::uniform_real_distribution<double> u(-10, 10), rad(0.05, 0.6);
+        for (int k = 0; k < count; ++k) s.objects.push_back({"s", Sphere{Vec3(u(g), u(g), u(g)), rad(g)}, 0});
+        s.objects.push_back({"floor", Plane{Vec3(0, 1, 0), -10.5}, 0});
+        const SceneTracer tracer(s);
+        std::vector<Ray> rays;
+        for (int i = 0; i < 100000; ++i) rays.push_back({Vec3(u(g), u(g), u(g)), random_direction(g)});
+        const size_t linear_rays = count <= 1000 ? rays.size() : 10000;
+        long hits[2] = {0, 0};
+        RenderStats st;
+        const Paired p = paired_runs(2, rounds, [&](size_t k) {
+            long n = 0;
+            if (k == 0) {
+                for (const Ray& r : rays) n += tracer.intersect(r, st).has_value();
+            } else {
+                for (size_t i = 0; i < linear_rays; ++i) {
+                    double t_max = kInf;
+                    bool hit = false;
+                    for (const Object& o : s.objects)
+                        if (const auto h = intersect(o.shape, rays[i], SceneTracer::kEpsilon, t_max)) {
+                            t_max = h->t;
+                            hit = true;
+                        }
+                    n += hit;
+                }
+            }
+            hits[k] = n;
+        });
+        const double a = 1e9 * median(p.wall[0]) / rays.size(), b = 1e9 * median(p.wall[1]) / linear_rays;
+        std::printf("  %8d %11.1f / %10.1f %11.1f / %10.1f %9.1fx   (hits %ld of %zu; linear on %zu rays)\n", count + 1, a,
+                    1e9 * minimum(p.wall[0]) / rays.size(), b, 1e9 * minimum(p.wall[1]) / linear_rays, b / a, hits[0],
+                    rays.size(), linear_rays);
+    }
     print_load("after");
 }
 

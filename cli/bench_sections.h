@@ -15,6 +15,10 @@ void kernels(int rounds);
 // where it finishes.
 void meshes(int rounds);
 
+// Scenes of 10 to 10 000 spheres: the tracer's nearest-hit search through its object BVH
+// against the linear search over the objects.
+void objects(int rounds);
+
 // The RTIOW dielectric chapter's last scene: refract's stochastic integrator against a
 // build of the book's own code at `book` (an executable writing its PPM to stdout).
 void rtiow(const std::string& book, int rounds);
