@@ -97,7 +97,22 @@ bool IlluminationMap::lattice(const Hit& hit, int& facet, int& k, double& s, dou
     k = k_[static_cast<size_t>(facet)];
     s = std::clamp((d22 * w1 - d12 * w2) / den, 0.0, 1.0) * k;
     r = std::clamp((d11 * w2 - d12 * w1) / den, 0.0, 1.0) * k;
+    // A hit on the long edge may lie past it by rounding: back onto it.
+    if (s + r > k) {
+        const double f = k / (s + r);
+        s *= f;
+        r *= f;
+    }
     return true;
+}
+
+void IlluminationMap::cell(int k, double s, double r, int& i, int& j, bool& upper) {
+    i = std::min(k - 1, static_cast<int>(s));
+    j = std::min(k - 1, static_cast<int>(r));
+    // A lattice point of the long edge (s + r = k, both whole) belongs to the lower
+    // triangle below it: cell (i, j) with i + j = k does not exist.
+    if (i + j > k - 1) --j;
+    upper = (s - i) + (r - j) > 1.0 && i + j < k - 1;
 }
 
 // Cell (i, j) of the k×k grid in (s, t) holds a lower and an upper triangle; cells with
@@ -115,11 +130,11 @@ int IlluminationMap::element(const Hit& hit) const {
         if (!grid(hit, x, y)) return -1;
         return static_cast<int>(y) * cells_ + static_cast<int>(x);
     }
-    int facet, k;
+    int facet, k, i, j;
     double s, r;
+    bool upper;
     if (!lattice(hit, facet, k, s, r)) return -1;
-    const int i = std::min(k - 1, static_cast<int>(s)), j = std::min(k - 1, static_cast<int>(r));
-    const bool upper = (s - i) + (r - j) > 1.0 && i + j < k - 1;
+    cell(k, s, r, i, j, upper);
     return mesh_element(facet, k, i, j, upper);
 }
 
@@ -158,12 +173,14 @@ Vec3 IlluminationMap::corner_mean(int facet, int k, int a, int b) const {
 }
 
 Vec3 IlluminationMap::barycentric(int facet, int k, double s, double r) const {
-    const int i = std::min(k - 1, static_cast<int>(s)), j = std::min(k - 1, static_cast<int>(r));
+    int i, j;
+    bool upper;
+    cell(k, s, r, i, j, upper);
     const double fs = s - i, fr = r - j;
-    if (fs + fr > 1.0 && i + j < k - 1)  // upper triangle
+    if (upper)
         return (1 - fr) * corner_mean(facet, k, i + 1, j) + (1 - fs) * corner_mean(facet, k, i, j + 1) +
                (fs + fr - 1) * corner_mean(facet, k, i + 1, j + 1);
-    // Lower triangle (on the triangle's long edge s + r may pass k by rounding: clamp).
+    // Lower triangle (fs + fr ≤ 1 but for rounding on the long edge: clamped).
     const double gs = std::fmin(fs, 1.0 - fr);
     return (1 - gs - fr) * corner_mean(facet, k, i, j) + gs * corner_mean(facet, k, i + 1, j) +
            fr * corner_mean(facet, k, i, j + 1);

@@ -61,8 +61,11 @@ private:
     // Plane grid coordinates (x, y) of a hit; false outside the square.
     bool grid(const Hit& hit, double& x, double& y) const;
     // Mesh: the triangle, its subdivision k and the hit's lattice coordinates (s, r),
-    // s, r ≥ 0, s + r ≤ k (within rounding); false when the hit has no facet of the map.
+    // s, r ≥ 0, s + r ≤ k; false when the hit has no facet of the map.
     bool lattice(const Hit& hit, int& facet, int& k, double& s, double& r) const;
+    // The element of lattice point (s, r): cell (i, j) of the k×k grid, its upper or
+    // lower triangle.
+    static void cell(int k, double s, double r, int& i, int& j, bool& upper);
     Vec3 bilinear(double x, double y) const;
     Vec3 barycentric(int facet, int k, double s, double r) const;
     Vec3 corner_mean(int facet, int k, int a, int b) const;  // lattice vertex (a, b)

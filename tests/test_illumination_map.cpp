@@ -223,3 +223,22 @@ TEST_CASE("Caustic error falls with photon count, bilinear below box at every co
     }
     CHECK(bil[2] < 0.1);
 }
+
+TEST_CASE("Mesh map: a hit on a triangle's long edge stays in that triangle's elements", "[light-pass][map]") {
+    // Two triangles cut into k = 2: the midpoint of the first one's long edge is a lattice
+    // point (1, 1), whose cell does not exist; it belongs to a lower triangle of its own.
+    TriangleMesh mesh;
+    mesh.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1)};
+    mesh.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(1, 3, 2)};
+    IlluminationMap m = IlluminationMap::for_mesh(mesh, 0.75);
+    REQUIRE(m.elements() == 8);
+    for (int e = 0; e < 8; ++e) m.irradiance[static_cast<size_t>(e)] = Vec3::Constant(e < 4 ? 1.0 : 100.0);
+    for (const Vec3& p : {Vec3(0.5, 0, 0.5), Vec3(0.5 + 1e-13, 0, 0.5 + 1e-13), Vec3(1, 0, 0), Vec3(0, 0, 1)}) {
+        INFO("point " << p.transpose());
+        const int e = m.element(at(p, 0));
+        CHECK(e >= 0);
+        CHECK(e < 4);
+        CHECK(m.value(at(p, 0), MapFilter::Box) == Vec3::Constant(1.0));
+        CHECK((m.value(at(p, 0), MapFilter::Bilinear) - Vec3::Constant(1.0)).norm() < 1e-12);
+    }
+}
