@@ -1,10 +1,12 @@
 // refract experiment NAME -o DIR
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "experiments/common.h"
 #include "experiments/experiment.h"
+#include "experiments/plot.h"
 
 namespace {
 
@@ -33,8 +35,10 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
         const auto& e = ex::find(a->name);
         if (a->out.empty()) a->out = "out/" + e.name;
         ex::ensure_dir(a->out);  // before the work: a bad -o is bad input
+        const auto t0 = std::chrono::steady_clock::now();
         e.run({a->out, a->threads, a->quick});
-        std::cout << e.name << ": results in " << a->out << "\n";
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::cout << e.name << ": results in " << a->out << " (" << ex::fmt(s, 3) << " s)\n";
     });
 }};
 

@@ -70,6 +70,7 @@ std::string RenderStats::summary() const {
           << "photon segments   " << photon_segments << "\n"
           << "map deposits      " << deposits << "\n"
           << "light pass (s)    " << light_seconds << "\n";
+    if (photons > 0 && light_seconds > 0) s << "photons/s         " << static_cast<double>(photons) / light_seconds << "\n";
     if (seconds > 0) s << "segments/s        " << static_cast<double>(segments) / seconds << "\n";
     return s.str();
 }

@@ -124,6 +124,13 @@ struct SpectralSettings {
 
 // Light pass (bidirectional ray tracing): photons from each point light at the transparent
 // objects, deposited in illumination maps of the diffuse surfaces (render.light_pass).
+// How the eye pass reads an illumination map between element centres
+// (core/illumination_map.h): Box, the element's constant value; Bilinear (the default),
+// plane maps interpolate bilinearly between the four nearest element centres, mesh maps
+// barycentrically between the averages at the corners of each triangle's elements.
+enum class MapFilter { Box, Bilinear };
+inline const char* filter_name(MapFilter f) { return f == MapFilter::Box ? "box" : "bilinear"; }
+
 struct LightPassSettings {
     bool enabled = false;
     std::uint64_t photons = 200000;  // per light
@@ -131,6 +138,7 @@ struct LightPassSettings {
     double region = 3.0;             // plane maps: half-size of the square under the gems,
                                      // in units of the gems' bounding radius
     std::uint64_t seed = 7;
+    MapFilter filter = MapFilter::Bilinear;  // reconstruction between elements
 };
 
 enum class IntegratorKind { Whitted, FresnelTree, Stochastic };

@@ -352,7 +352,7 @@ SpectralSettings parse_spectral(const JsonReader& r, const std::string& file) {
 }
 
 LightPassSettings parse_light_pass(const JsonReader& r) {
-    r.only({"enabled", "photons", "element_size", "region", "seed"});
+    r.only({"enabled", "photons", "element_size", "region", "seed", "filter"});
     LightPassSettings s;
     s.enabled = r.boolean("enabled", true);
     if (r.has("photons")) {
@@ -369,6 +369,10 @@ LightPassSettings parse_light_pass(const JsonReader& r) {
             r.fail_at("seed", "must be a non-negative integer");
         s.seed = v.get<std::uint64_t>();
     }
+    const std::string filter = r.string("filter", "bilinear");
+    if (filter == "box") s.filter = MapFilter::Box;
+    else if (filter == "bilinear") s.filter = MapFilter::Bilinear;
+    else r.fail_at("filter", "unknown filter '" + filter + "' (box, bilinear)");
     return s;
 }
 

@@ -18,7 +18,7 @@ const std::vector<Experiment>& all() {
          "Round brilliant: facet drawings, proportions measured back, Fresnel diamond renders, plane-set vs mesh cost",
          gem_geometry::run},
         {"ohtsuka1998",
-         "Ohtsuka & Kawai 1998: dispersion in a diamond, light + eye pass, shortcut speed-up, wavelength/element/threshold studies",
+         "Ohtsuka & Kawai 1998: dispersion in a diamond, light + eye pass, shortcut speed-up, wavelength/threshold studies, the floor map against photons and element size",
          ohtsuka1998::run},
         {"polarisation",
          "Exact polarisation against natural light: a sphere's DoP per path vs closed forms, the 1998 diamond and a glass sphere in both models, the diamond through an analyser",

@@ -16,6 +16,7 @@
 #include "core/spectrum/cie.h"
 #include "core/spectrum/dispersion.h"
 #include "experiments/common.h"
+#include "experiments/ohtsuka1998_maps.h"
 #include "experiments/plot.h"
 
 namespace refract::experiments::ohtsuka1998 {
@@ -24,6 +25,10 @@ using nlohmann::json;
 
 namespace {
 constexpr int kMaxDepth = 17;  // 8 reflections + 8 transmissions + the primary ray
+// The main image's light pass (the first version had 30 000 photons on box elements of
+// 0.025; the map studies below chose these).
+constexpr std::uint64_t kPhotons = 1000000, kFirstPhotons = 30000;
+constexpr double kElement = 0.0125, kFirstElement = 0.025;
 }
 
 json scene_json(const SceneParams& p) {
@@ -39,7 +44,8 @@ json scene_json(const SceneParams& p) {
                      {"max_transmissions", 8}};
     json render = {{"max_depth", kMaxDepth}, {"threshold", 1.0 / 255.0}, {"spectral", spectral}};
     if (p.light_pass)
-        render["light_pass"] = {{"photons", p.photons}, {"element_size", p.element_size}, {"region", 3}, {"seed", 7}};
+        render["light_pass"] = {{"photons", p.photons}, {"element_size", p.element_size}, {"region", 3},
+                                {"seed", p.seed}, {"filter", filter_name(p.filter)}};
     return json{
         {"description", "Ohtsuka & Kawai 1998: round-brilliant diamond (Sellmeier, Peter 1923) on a diffuse floor, "
                         "one point light, 400-700 nm, at most 8 reflections and 8 transmissions"},
@@ -139,6 +145,7 @@ std::string f3(double v) { return fmt(v, 3); }
 }  // namespace
 
 void run(const ExperimentOptions& opt) {
+    const auto t_all = std::chrono::steady_clock::now();
     const std::string dir = opt.out_dir;
     ensure_dir(dir);
     auto path = [&](const std::string& f) { return (std::filesystem::path(dir) / f).string(); };
@@ -148,10 +155,13 @@ void run(const ExperimentOptions& opt) {
 
     // ---- The main image, with and without the shortcut ----------------------------------
     SceneParams base;
+    base.photons = kPhotons;
+    base.element_size = kElement;
     if (opt.quick) {
         base.width = 120;
         base.height = 90;
         base.photons = 3000;
+        base.element_size = 0.05;
     }
     save_json(dir, "scene.json", scene_json(base));
     const Scene full_scene = make(base, "scene.json");
@@ -164,6 +174,18 @@ void run(const ExperimentOptions& opt) {
     write_image(path("diamond.png"), full.r.image);
     write_image(path("diamond-shortcut.png"), fast.image);
     write_diff_image(path("difference-x10.png"), full.r.image, fast.image, 10.0);
+    // The floor as the first version rendered it (30 000 photons, box elements), and the
+    // same photons as the main image read box-wise: what the photon count and the filter do.
+    SceneParams bp = base;
+    bp.filter = MapFilter::Box;
+    save_json(dir, "scene-box.json", scene_json(bp));
+    write_image(path("diamond-box.png"), eye_only(make(bp, "scene-box.json"), T, maps).image);
+    SceneParams first = bp;
+    first.photons = opt.quick ? 300 : kFirstPhotons;
+    first.element_size = opt.quick ? 0.1 : kFirstElement;
+    save_json(dir, "scene-first.json", scene_json(first));
+    const Timed before = run_both(make(first, "scene-first.json"), T);
+    write_image(path("diamond-first.png"), before.r.image);
     const Diff d = difference(full.r.image, fast.image);
     const double eye_full = full.eye_s, eye_fast = fast.stats.seconds;
     const int threads_used = T > 0 ? T : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -172,6 +194,10 @@ void run(const ExperimentOptions& opt) {
     md << "![diamond](diamond.png) ![shortcut](diamond-shortcut.png) ![difference ×10](difference-x10.png)\n\n"
        << "Left: full spectral split; middle: with the three-wavelength shortcut (threshold "
        << base.shortcut_threshold << "); right: |difference| × 10.\n\n"
+       << "![first](diamond-first.png) ![box](diamond-box.png) ![bilinear](diamond.png)\n\n"
+       << "The floor's caustic: " << first.photons << " photons on elements of " << first.element_size
+       << " read box-wise (the first version); " << base.photons << " photons on elements of " << base.element_size
+       << " read box-wise, and the same maps read bilinearly (the main image).\n\n"
        << "## Conditions (the paper's Fig. 1)\n\n"
        << "| | paper | here |\n|---|---|---|\n"
        << "| patches | 244 | " << gem.planes.size() << " facet planes + 1 floor plane |\n"
@@ -179,7 +205,9 @@ void run(const ExperimentOptions& opt) {
        << "| image size | 640×480 | " << base.width << "×" << base.height << " |\n"
        << "| lights | 1 | 1 |\n| max reflections | 8 | 8 |\n| max transmissions | 8 | 8 |\n"
        << "| visible range | 400–700 nm | 400–700 nm |\n| sampling interval | 10 nm | " << base.step_nm << " nm |\n"
-       << "| photons | — | " << maps->photons << " (" << maps->deposits << " deposits) |\n\n"
+       << "| photons | — | " << maps->photons << " (" << maps->deposits << " deposits, "
+       << fmt(static_cast<double>(maps->photons) / full.light_s, 3) << " photons/s) |\n"
+       << "| map reconstruction | — | " << filter_name(base.filter) << " |\n\n"
        << "## Times (" << threads_used << " threads)\n\n"
        << "| | paper (SGI O2, R10000 175 MHz) | here (s) |\n|---|---|---|\n"
        << "| light pass | 5.4 h | " << f3(full.light_s) << " |\n"
@@ -220,22 +248,33 @@ void run(const ExperimentOptions& opt) {
     }
     write_csv(path("wavelength_step.csv"), steps);
 
-    // ---- Study: element size ---------------------------------------------------------------
-    Csv elems{{"element_size", "elements", "rmse", "de_mean", "light_s", "eye_s"}, {}};
-    {
-        SceneParams r = st;
-        r.element_size = 0.0125;
-        r.photons = st.photons * 8;
-        const Image eref = run_both(make(r, "element-ref"), T).r.image;
-        for (double e : {0.0125, 0.025, 0.05, 0.1, 0.2}) {
-            SceneParams q = st;
-            q.element_size = e;
-            std::shared_ptr<const IlluminationMaps> m;
-            const Timed t = run_both(make(q, "element"), T, &m);
-            const Diff x = difference(t.r.image, eref);
-            elems.add({fmt(e), std::to_string(m->elements()), fmt(x.rmse), fmt(x.de_mean), fmt(t.light_s), fmt(t.eye_s)});
-        }
+    // ---- Studies: the floor map against photon count and element size ------------------------
+    // The reference: the main image's light pass and one more of another seed.
+    MapStudyPlan plan;
+    plan.reference_element = base.element_size;
+    plan.reference_photons = base.photons;
+    plan.reference_seeds[0] = base.seed;
+    plan.reference_seeds[1] = base.seed + 1;
+    if (opt.quick) {
+        plan.photon_element = 0.1;
+        plan.photons = {500, 2000};
+        plan.elements = {0.4, 0.2, 0.1};
+        plan.density_element = 0.1;
+        plan.density_photons = 2000;
     }
+    const MapStudies ms = run_map_studies(base, plan, T, maps);
+    auto map_csv = [](const std::vector<MapStudyRow>& rows) {
+        Csv c{{"element_size", "elements", "photons", "filter", "deposits_per_element", "error", "noise", "bias",
+               "light_s"},
+              {}};
+        for (const MapStudyRow& r : rows)
+            c.add({fmt(r.element_size), std::to_string(r.elements), std::to_string(r.photons), filter_name(r.filter),
+                   fmt(r.deposits_per_element, 4), fmt(r.e.error, 4), fmt(r.e.noise, 4), fmt(r.e.bias, 4),
+                   fmt(r.light_s, 3)});
+        return c;
+    };
+    const Csv photon_count = map_csv(ms.by_photons), elems = map_csv(ms.by_element);
+    write_csv(path("photon_count.csv"), photon_count);
     write_csv(path("element_size.csv"), elems);
 
     // ---- Study: shortcut threshold, and 610 nm against the measured r̄ peak -------------------
@@ -315,7 +354,18 @@ void run(const ExperimentOptions& opt) {
 
     auto table = [](const Csv& c) { return c.markdown(4); };
     md << "## Study: wavelength sampling interval (" << st.width << "×" << st.height << ", error against 1 nm)\n\n"
-       << table(steps) << "\n## Study: illumination-map element size (error against edge 0.0125 with 8× photons)\n\n"
+       << table(steps) << "\n## Studies: the floor's illumination map\n\n"
+       << "The floor map's irradiance (RGB) at the points of a grid (2×2 per reference element, the whole map), "
+          "against a reference of "
+       << ms.reference_photons << " photons on elements of " << ms.reference_element
+       << " read bilinearly (its own noise σ_ref = " << fmt(ms.reference_noise, 3)
+       << "; the main image's light pass and one of another seed), as a relative RMS: `error` of one run, `noise` "
+          "from two runs of different seeds, `bias` what remains of the pair's mean against the reference "
+          "(experiments/ohtsuka1998_maps.h). The studies traced "
+       << ms.photons_traced << " photons besides the main image's, in " << fmt(ms.seconds, 3) << " s.\n\n"
+       << "### Photon count (elements of " << plan.photon_element << ")\n\n" << table(photon_count)
+       << "\n### Element size at a fixed photon density (" << plan.density_photons << " photons on elements of "
+       << plan.density_element << ", × (" << plan.density_element << "/h)² on elements of edge h)\n\n"
        << table(elems) << "\n## Study: shortcut threshold (speed-up against error, eye pass)\n\n" << table(thr)
        << "\n## The paper's 610/545/445 nm against the measured peaks of r̄, ḡ, b̄ (threshold "
        << st.shortcut_threshold << ")\n\n" << table(peak)
@@ -336,19 +386,38 @@ void run(const ExperimentOptions& opt) {
                                 "set title 'Wavelength sampling interval: error and time'\n"
                                 "plot 'wavelength_step.csv' every ::2 using 1:3 with linespoints lw 2 title 'RMSE', \\\n"
                                 "     '' every ::1 using 1:($6+$7) axes x1y2 with linespoints lw 2 title 'light + eye time'\n");
+        // Rows alternate box, bilinear: every 2nd row from row 1 (box) or 2 (bilinear).
+        const std::string curves = " using {x}:6 with linespoints lw 2 pt 7 lc 1 title 'box, error', \\\n"
+                                   "     '' every 2::2 using {x}:6 with linespoints lw 2 pt 7 lc 2 title 'bilinear, error', \\\n"
+                                   "     '' every 2::1 using {x}:7 with linespoints dt 2 lc 1 title 'box, noise', \\\n"
+                                   "     '' every 2::2 using {x}:7 with linespoints dt 2 lc 2 title 'bilinear, noise', \\\n"
+                                   "     '' every 2::1 using {x}:8 with linespoints dt 3 lc 1 title 'box, bias', \\\n"
+                                   "     '' every 2::2 using {x}:8 with linespoints dt 3 lc 2 title 'bilinear, bias'\n";
+        auto with_x = [&](const std::string& x) {
+            std::string c = curves;
+            for (size_t k; (k = c.find("{x}")) != std::string::npos;) c.replace(k, 3, x);
+            return c;
+        };
+        gnuplot_figure(dir, "photon_count",
+                       common + "set logscale xy\nset key top right box opaque\nset xlabel 'photons'\n"
+                                "set ylabel 'relative RMS against the reference'\n"
+                                "set title 'Floor map: error against photon count'\n"
+                                "plot 'photon_count.csv' every 2::1" + with_x("3"));
         gnuplot_figure(dir, "element_size",
-                       common + "set logscale x\nset xlabel 'element edge (scene units)'\nset ylabel 'RMSE against reference'\n"
-                                "set y2label 'light-pass time (s)'\nset y2tics\nset ytics nomirror\n"
-                                "set title 'Illumination-map element size: error and time'\n"
-                                "plot 'element_size.csv' every ::1 using 1:3 with linespoints lw 2 title 'RMSE', \\\n"
-                                "     '' every ::1 using 1:5 axes x1y2 with linespoints lw 2 title 'light pass time'\n");
+                       common + "set logscale xy\nset key top left box opaque\nset xlabel 'element edge (scene units)'\n"
+                                "set ylabel 'relative RMS against the reference'\n"
+                                "set title 'Floor map: error against element size (fixed photons per element)'\n"
+                                "plot 'element_size.csv' every 2::1" + with_x("1"));
         gnuplot_figure(dir, "shortcut_threshold",
                        common + "set logscale y\nset xlabel 'eye-pass speed-up (segments)'\nset ylabel 'RMSE against full split'\n"
                                 "set title 'Shortcut threshold: speed-up against error'\n"
                                 "plot 'shortcut_threshold.csv' every ::1 using 4:5 with linespoints lw 2 title 'threshold 0.001 ... 0.3', \\\n"
                                 "     '' every ::1 using 4:5:(sprintf('%g', $1)) with labels offset 1,1 notitle\n");
-        md << "Figures: `wavelength_step.png`, `element_size.png`, `shortcut_threshold.png` (and PDF).\n";
+        md << "Figures: `wavelength_step.png`, `photon_count.png`, `element_size.png`, `shortcut_threshold.png` (and "
+              "PDF).\n";
     }
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_all).count();
+    md << "\nRun time of the whole experiment: " << f3(total) << " s (" << threads_used << " threads).\n";
     write_text_atomic(path("summary.md"), md.str());
 }
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/scene.h"
 #include "experiments/experiment.h"
 
 namespace refract::experiments::ohtsuka1998 {
@@ -16,8 +17,10 @@ namespace refract::experiments::ohtsuka1998 {
 struct SceneParams {
     int width = 640, height = 480;
     double step_nm = 10;
-    std::uint64_t photons = 30000;
+    std::uint64_t photons = 30000;  // the experiment's main image uses more (ohtsuka1998.cpp)
     double element_size = 0.025;
+    std::uint64_t seed = 7;  // the light pass's
+    MapFilter filter = MapFilter::Bilinear;
     bool shortcut = false;
     double shortcut_threshold = 0.01;
     double shortcut_wavelengths[3] = {610, 545, 445};

@@ -201,9 +201,21 @@ TEST_CASE("Ohtsuka driver (quick) writes images, tables and studies; the shortcu
     fs::create_directories(d);
     experiments::find("ohtsuka1998").run({d.string(), 2, true});
     for (const char* f : {"diamond.png", "diamond-shortcut.png", "difference-x10.png", "scene.json", "times.csv",
-                          "wavelength_step.csv", "element_size.csv", "shortcut_threshold.csv", "shortcut_peaks.csv",
-                          "summary.md"})
+                          "wavelength_step.csv", "element_size.csv", "photon_count.csv", "shortcut_threshold.csv",
+                          "shortcut_peaks.csv", "summary.md", "diamond-box.png", "diamond-first.png"})
         CHECK(fs::file_size(d / f) > 0);
+    // The map studies: box and bilinear rows per configuration, from the same two runs;
+    // bilinear weights average the noise down (to about 2/3 for white noise).
+    for (const char* f : {"photon_count.csv", "element_size.csv"}) {
+        const experiments::Csv m = experiments::read_csv((d / f).string());
+        REQUIRE(m.rows.size() == (std::string(f) == "photon_count.csv" ? 4u : 6u));
+        for (size_t k = 0; k + 1 < m.rows.size(); k += 2) {
+            CHECK(m.rows[k][3] == "box");
+            CHECK(m.rows[k + 1][3] == "bilinear");
+            CHECK(std::stod(m.rows[k + 1][6]) < 0.85 * std::stod(m.rows[k][6]));  // noise
+            CHECK(std::stod(m.rows[k][6]) > 0);
+        }
+    }
     const experiments::Csv steps = experiments::read_csv((d / "wavelength_step.csv").string());
     REQUIRE(steps.rows.size() == 5);
     CHECK(std::stod(steps.rows[0][2]) == 0.0);                            // 1 nm against itself

@@ -120,7 +120,8 @@ public:
             const auto* d = m.as<material::Diffuse>();
             const Pigment& pig = d ? d->pigment : m.as<material::Lambertian>()->pigment;
             const int obj = static_cast<int>(h.object - tracer_.scene().objects.data());
-            local += (d ? d->diffuse : 1.0) * tracer_.pigment(pig, h.hit.point).cwiseProduct(ctx_.maps->irradiance(obj, h.hit));
+            const Vec3 e_map = ctx_.maps->irradiance(obj, h.hit, tracer_.scene().settings.light_pass.filter);
+            local += (d ? d->diffuse : 1.0) * tracer_.pigment(pig, h.hit.point).cwiseProduct(e_map);
         }
         add(e, seen(e.pol, e.weight, local));
     }
