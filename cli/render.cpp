@@ -7,6 +7,7 @@
 #include "core/polarisation_output.h"
 #include "core/render.h"
 #include "core/scene_json.h"
+#include "core/tracer.h"
 
 namespace {
 
@@ -17,6 +18,7 @@ struct RenderArgs {
     bool linear16 = false;
     bool lost = false;
     bool spectral = false;
+    bool full_plane_loop = false;
     std::uint64_t max_memory = 0;
 };
 
@@ -36,7 +38,11 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     sub->add_flag("--lost-energy", args->lost,
                   "Also write IMAGE.lost.exr: per pixel the weight dropped by the depth limit, the "
                   "reflection/transmission limits and the threshold");
+    sub->add_flag("--full-plane-loop", args->full_plane_loop,
+                  "Intersect every ray leaving a gem facet with all of the gem's planes, not the planes around "
+                  "the facet (the same image, slower; for comparison)");
     sub->callback([args] {
+        if (args->full_plane_loop) refract::SceneTracer::set_facet_local(false);
         refract::check_image_path(args->output);  // before the work, not after it
         const refract::Scene scene = refract::load_scene(args->scene);
         refract::RenderOptions opt;

@@ -86,6 +86,7 @@ private:
 struct IlluminationMaps {
     std::vector<std::unique_ptr<IlluminationMap>> by_object;
     std::uint64_t photons = 0, deposits = 0, segments = 0;
+    std::uint64_t facet_local = 0, facet_full = 0;  // RenderStats' counts for the light pass
     double seconds = 0;
     // Irradiance at a hit on object `object`, reconstructed with `filter`; 0 without a
     // map or outside it.

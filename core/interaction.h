@@ -7,6 +7,7 @@
 // these same branches (core/integrators/stochastic.cpp); only Lambertian and fuzzy metal
 // scatter randomly, and own that sampling here too.
 #include <array>
+#include <cstdint>
 #include <optional>
 
 #include "core/material.h"
@@ -18,6 +19,13 @@
 namespace refract {
 
 struct Object;
+
+// Where a ray starts: the object (index in Scene::objects) and facet of the hit it leaves
+// (a reflected or refracted branch), or none (-1: a camera ray, a photon from a light).
+struct RayOrigin {
+    std::int32_t object = -1;
+    std::int32_t facet = -1;
+};
 
 struct SurfaceHit {
     Hit hit;

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -167,23 +168,23 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         max_power = std::fmax(max_power, em.power.cwiseAbs().maxCoeff() * static_cast<double>(em.photons));
     // Fixed point: 2^40 units for the largest emitter's total power.
     acc.scale = max_power > 0 ? kFixedScale / max_power : 1.0;
-    std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0};
+    std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0}, facet_local{0}, facet_full{0};
     SceneTracer tracer(scene);
     const TreeLimits limits = ctx.limits(rs);
     const bool exact = rs.polarisation == PolarisationModel::Exact;
 
-    auto trace_photon = [&](const Emitter& em, std::uint64_t p, RenderStats& st, std::uint64_t& dep) {
-        const auto [ray, power] = sample_photon(em, lp.seed, p);
-        if (exact) {
-            RayTreeWalkerT<LightStokes> walker(tracer, limits, st);
-            PhotonEnds<LightStokes> ends{scene, ctx, *maps, acc, em.dref, st, dep};
-            RayTreeWalkerT<LightStokes>::List list{TreeEntryT<LightStokes>{ray, power}};
-            list.front().pol = emitted(emitter_polarisation(scene, em), ray.dir);
-            walker.walk(list, ends);
-        } else {
-            RayTreeWalker walker(tracer, limits, st);
-            PhotonEnds<NaturalLight> ends{scene, ctx, *maps, acc, em.dref, st, dep};
-            RayTreeWalker::List list{TreeEntry{ray, power}};
+    // A chunk of one emitter's photons, walked on one list.
+    auto trace_photons = [&](auto payload, const Emitter& em, std::uint64_t begin, std::uint64_t end, RenderStats& st,
+                             std::uint64_t& dep) {
+        using P = decltype(payload);
+        RayTreeWalkerT<P> walker(tracer, limits, st);
+        PhotonEnds<P> ends{scene, ctx, *maps, acc, em.dref, st, dep};
+        typename RayTreeWalkerT<P>::List list;
+        for (std::uint64_t p = begin; p != end; ++p) {
+            const auto [ray, power] = sample_photon(em, lp.seed, p);
+            TreeEntryT<P> e{ray, power};
+            if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(emitter_polarisation(scene, em), ray.dir);
+            list.push_back(e);
             walker.walk(list, ends);
         }
     };
@@ -197,10 +198,13 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
                               [&](const tbb::blocked_range<std::uint64_t>& r) {
                                   RenderStats st;
                                   std::uint64_t dep = 0;
-                                  for (std::uint64_t p = r.begin(); p != r.end(); ++p) trace_photon(em, p, st, dep);
+                                  if (exact) trace_photons(LightStokes{}, em, r.begin(), r.end(), st, dep);
+                                  else trace_photons(NaturalLight{}, em, r.begin(), r.end(), st, dep);
                                   photons += r.size();
                                   deposits += dep;
                                   segments += st.segments;
+                                  facet_local += st.facet_local;
+                                  facet_full += st.facet_full;
                               });
         });
     }
@@ -217,6 +221,8 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     maps->photons = photons;
     maps->deposits = deposits;
     maps->segments = segments;
+    maps->facet_local = facet_local;
+    maps->facet_full = facet_full;
     maps->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return maps;
 }

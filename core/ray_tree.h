@@ -33,12 +33,13 @@ struct TreeEntryT {
     Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
     double bailout = 1.0;  // the scalar the threshold is compared with
     // Counters in 16 bits (max_depth <= 10000, bands <= 1003): a list entry of the
-    // natural-light walk stays 96 bytes, as the walks it replaced.
+    // natural-light walk is 104 bytes.
     std::int16_t depth = 0;  // surface interactions before this ray
     std::int16_t reflections = 0, transmissions = 0;
     std::int16_t band = -1;  // spectral band of the ray; −1: an RGB ray
     double travelled = 0;    // path length from the tree's root to this ray's origin
     [[no_unique_address]] P pol{};  // polarisation payload (none for natural light)
+    RayOrigin from{};        // the hit this ray leaves (none for a root)
 };
 using TreeEntry = TreeEntryT<NaturalLight>;
 
@@ -118,7 +119,7 @@ public:
             // ⑤ take the oldest entry and find its first surface.
             Entry e = list.front();
             list.pop_front();
-            const auto hit = tracer_.intersect(e.ray, stats_);
+            const auto hit = tracer_.intersect(e.ray, stats_, e.from);
             if (!hit) {
                 ends.background(e);
                 continue;
@@ -177,7 +178,7 @@ public:
         list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
                         static_cast<std::int16_t>(refl), static_cast<std::int16_t>(trans),
                         static_cast<std::int16_t>(band == -2 ? e.band : band), e.travelled + h.hit.t,
-                        descend(e.pol, h.normal, e.ray.dir, M)});
+                        descend(e.pol, h.normal, e.ray.dir, M), tracer_.origin_of(h)});
         return true;
     }
 

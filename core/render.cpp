@@ -42,6 +42,8 @@ void RenderStats::merge(const RenderStats& o) {
     shortcut_tests += o.shortcut_tests;
     shortcut_taken += o.shortcut_taken;
     wavelength_segments += o.wavelength_segments;
+    facet_local += o.facet_local;
+    facet_full += o.facet_full;
     photons += o.photons;
     photon_segments += o.photon_segments;
     deposits += o.deposits;
@@ -65,6 +67,9 @@ std::string RenderStats::summary() const {
           << "shortcut tests    " << shortcut_tests << "\n"
           << "shortcut taken    " << shortcut_taken << "\n"
           << "wavelength segs   " << wavelength_segments << "\n";
+    if (facet_local + facet_full > 0)
+        s << "facet segments    " << facet_local << " local, " << facet_full << " full ("
+          << 100.0 * static_cast<double>(facet_local) / static_cast<double>(facet_local + facet_full) << " % local)\n";
     if (photons > 0)
         s << "photons           " << photons << "\n"
           << "photon segments   " << photon_segments << "\n"
@@ -258,6 +263,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
             light_stats.photons = maps->photons;
             light_stats.photon_segments = maps->segments;
             light_stats.deposits = maps->deposits;
+            light_stats.facet_local = maps->facet_local;
+            light_stats.facet_full = maps->facet_full;
             ctx->maps = maps.get();
         }
     }

@@ -33,6 +33,9 @@ struct RenderStats {
     std::uint64_t shortcut_tests = 0;       // three-wavelength tests made
     std::uint64_t shortcut_taken = 0;       // ... that skipped the full split
     std::uint64_t wavelength_segments = 0;  // segments traced by single-wavelength rays
+    // Segments leaving a facet of a convex plane set (core/tracer.h): decided from the planes
+    // around the facet and a guessed leaving facet, or by the full plane loop.
+    std::uint64_t facet_local = 0, facet_full = 0;
     // Light pass (core/light_pass.h).
     std::uint64_t photons = 0;              // photons shot
     std::uint64_t photon_segments = 0;      // their ray segments

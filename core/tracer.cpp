@@ -1,6 +1,8 @@
 #include "core/tracer.h"
 
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/optics.h"
@@ -23,6 +25,20 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
     for (size_t k = 0; k < order_.size(); ++k)
         if (const auto* m = std::get_if<TriangleMesh>(&order_[k]->shape); m && m->triangles.size() >= MeshAccel::kMinTriangles)
             mesh_accel_[k] = std::make_unique<MeshAccel>(*m);
+    // Facet-local intersection for bounded plane sets of kMinFacetPlanes planes or more.
+    order_of_.assign(scene.objects.size(), 0);
+    facet_graph_.resize(order_.size());
+    facet_base_.assign(order_.size(), -1);
+    for (size_t k = 0; k < order_.size(); ++k) {
+        order_of_[static_cast<size_t>(order_[k] - scene.objects.data())] = k;
+        const auto* c = std::get_if<ConvexPolyhedron>(&order_[k]->shape);
+        if (!c || c->planes.size() < kMinFacetPlanes || !(c->bound_radius > 0)) continue;
+        facet_graph_[k] = std::make_unique<FacetGraph>(*c);
+        facet_base_[k] = static_cast<std::int32_t>(facet_ids_);
+        facet_ids_ += c->planes.size();
+    }
+    static std::atomic<std::uint64_t> tracers{0};
+    id_ = ++tracers;
     if (order_.size() >= kBvhMinObjects) {
         std::vector<std::optional<Bounds>> boxes;
         for (const Object* o : order_) {
@@ -44,14 +60,96 @@ std::optional<Hit> SceneTracer::intersect_object(size_t k, const Ray& ray, doubl
     return refract::intersect(order_[k]->shape, ray, t_min, t_max);
 }
 
+namespace {
+
+std::atomic<bool> facet_local_on{true};
+
+// The guesses of one thread for one tracer: per starting facet, the last few directions
+// that left it (in single precision: they only choose a guess) and the facet each left
+// through.
+struct GuessCache {
+    static constexpr int kSlots = 4;
+    struct Slot {
+        float dir[3];
+        std::int32_t facet;
+    };
+    std::uint64_t owner = 0;
+    std::vector<Slot> slots;       // kSlots per facet id
+    std::vector<std::uint8_t> next;  // per facet id: the slot to overwrite next
+
+    void reset(std::uint64_t id, size_t ids) {
+        owner = id;
+        slots.assign(ids * kSlots, Slot{{0, 0, 0}, -1});
+        next.assign(ids, 0);
+    }
+    // The facet left by the remembered direction nearest to dir, and its slot.
+    std::pair<int, int> guess(size_t id, const Vec3& dir) const {
+        const Slot* s = &slots[id * kSlots];
+        int best = -1, slot = -1;
+        float best_dot = -2;
+        const float d0 = static_cast<float>(dir.x()), d1 = static_cast<float>(dir.y()), d2 = static_cast<float>(dir.z());
+        for (int i = 0; i < kSlots; ++i) {
+            if (s[i].facet < 0) continue;
+            const float dot = s[i].dir[0] * d0 + s[i].dir[1] * d1 + s[i].dir[2] * d2;
+            if (dot > best_dot) {
+                best_dot = dot;
+                best = s[i].facet;
+                slot = i;
+            }
+        }
+        return {best, slot};
+    }
+    // Remembers that dir left through `facet`: in the slot that guessed it, else the oldest.
+    void store(size_t id, const Vec3& dir, int facet, int slot, bool guessed) {
+        if (!guessed) {
+            slot = next[id];
+            next[id] = static_cast<std::uint8_t>((slot + 1) % kSlots);
+        }
+        Slot& s = slots[id * kSlots + static_cast<size_t>(slot)];
+        s = Slot{{static_cast<float>(dir.x()), static_cast<float>(dir.y()), static_cast<float>(dir.z())}, facet};
+    }
+};
+
+thread_local GuessCache guess_cache;
+
+}  // namespace
+
+void SceneTracer::set_facet_local(bool on) { facet_local_on.store(on, std::memory_order_relaxed); }
+bool SceneTracer::facet_local() { return facet_local_on.load(std::memory_order_relaxed); }
+
+std::optional<Hit> SceneTracer::intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
+                                               RenderStats& stats) const {
+    const FacetGraph* graph = facet_graph_[k].get();
+    if (!graph || from_facet < 0 || !facet_local()) return intersect_object(k, ray, t_min, t_max);
+    const auto& c = std::get<ConvexPolyhedron>(order_[k]->shape);
+    GuessCache& cache = guess_cache;
+    if (cache.owner != id_) cache.reset(id_, facet_ids_);
+    const size_t id = static_cast<size_t>(facet_base_[k] + from_facet);
+    const auto [guess, slot] = cache.guess(id, ray.dir);
+    const FacetGraph::Local local = graph->intersect(c, ray, t_min, t_max, from_facet, guess);
+    if (local.decided) {
+        ++stats.facet_local;
+        if (local.hit) cache.store(id, ray.dir, local.hit->facet, slot, true);
+        return local.hit;
+    }
+    ++stats.facet_full;
+    auto hit = intersect_object(k, ray, t_min, t_max);
+    if (hit) cache.store(id, ray.dir, hit->facet, slot, false);
+    return hit;
+}
+
 template <class Use>
-std::optional<SceneTracer::Nearest> SceneTracer::nearest(const Ray& ray, double t_min, double t_max, Use&& use) const {
+std::optional<SceneTracer::Nearest> SceneTracer::nearest(const Ray& ray, double t_min, double t_max, Use&& use,
+                                                         size_t from_k, int from_facet, RenderStats* stats) const {
     std::optional<Nearest> best;
+    const auto ask = [&](size_t k, double lo, double hi) {
+        return k == from_k ? intersect_from(k, from_facet, ray, lo, hi, *stats) : intersect_object(k, ray, lo, hi);
+    };
     if (!bvh_) {
         // In order: a hit replaces the best one only when strictly nearer.
         for (size_t k = 0; k < order_.size(); ++k) {
             if (!use(k)) continue;
-            const auto hit = intersect_object(k, ray, t_min, t_max);
+            const auto hit = ask(k, t_min, t_max);
             if (!hit) continue;
             t_max = hit->t;
             best = Nearest{*hit, k};
@@ -66,7 +164,7 @@ std::optional<SceneTracer::Nearest> SceneTracer::nearest(const Ray& ray, double 
         const size_t k = static_cast<size_t>(i);
         if (!use(k)) return;
         const double limit = best ? std::nextafter(t_cull, std::numeric_limits<double>::infinity()) : t_max;
-        const auto hit = intersect_object(k, ray, t_min, limit);
+        const auto hit = ask(k, t_min, limit);
         if (!hit || (best && hit->t == best->hit.t && k > best->k)) return;
         t_cull = hit->t;
         best = Nearest{*hit, k};
@@ -74,14 +172,15 @@ std::optional<SceneTracer::Nearest> SceneTracer::nearest(const Ray& ray, double 
     return best;
 }
 
-std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& stats) const {
+std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& stats, RayOrigin from) const {
     ++stats.segments;
     std::optional<SurfaceHit> best;
     // POV-Ray keeps hits with kPovMinDepth <= t < kPovMaxDistance (every ray, primary too).
     const bool pov = scene_.settings.compat == Compat::PovRay;
     const double t_min = pov ? kPovMinDepth : kEpsilon;
     const double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
-    if (const auto n = nearest(ray, t_min, t_max, [](size_t) { return true; })) {
+    const size_t from_k = from.object >= 0 && from.facet >= 0 ? order_of_[static_cast<size_t>(from.object)] : SIZE_MAX;
+    if (const auto n = nearest(ray, t_min, t_max, [](size_t) { return true; }, from_k, from.facet, &stats)) {
         const Object& obj = *order_[n->k];
         best = SurfaceHit{n->hit, &obj, &scene_.materials[obj.material], n->hit.normal, true};
     }

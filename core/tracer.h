@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/facet_graph.h"
 #include "geometry/mesh_accel.h"
 #include "geometry/object_bvh.h"
 
@@ -24,11 +25,25 @@ public:
     explicit SceneTracer(const Scene& scene);
     ~SceneTracer();
     static constexpr size_t kBvhMinObjects = 64;  // the cross-over measured by `refract bench --objects`
+    static constexpr size_t kMinFacetPlanes = 8;   // plane sets given facet-local intersection
 
     const Scene& scene() const { return scene_; }
     const RenderSettings& settings() const { return scene_.settings; }
 
-    std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats) const;
+    // The nearest hit. A ray leaving a facet of a convex plane set (`from`, the hit it
+    // leaves) is decided from the planes around that facet and the facet it is guessed to
+    // leave through (geometry/facet_graph.h), else by the full plane loop: the same hit to
+    // the last bit. Guesses are remembered per thread, per starting facet and direction:
+    // the 31 rays of a spectral split cross mostly the same facets, one after another.
+    std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats, RayOrigin from = {}) const;
+    // The RayOrigin of the branches leaving hit h.
+    RayOrigin origin_of(const SurfaceHit& h) const {
+        return {static_cast<std::int32_t>(h.object - scene_.objects.data()), h.hit.facet};
+    }
+    // Facet-local intersection on or off, for every tracer of the process (on by default;
+    // tests and benchmarks compare the two).
+    static void set_facet_local(bool on);
+    static bool facet_local();
     // The camera's ray through image position (x, y) (Camera::ray, its basis computed once).
     Ray camera_ray(double x, double y) const { return scene_.camera.ray(camera_basis_, x, y); }
     Vec3 background(const Vec3& dir) const;
@@ -80,9 +95,15 @@ private:
         Hit hit;
         size_t k;
     };
+    // `from_k`, `from_facet`: the order_ entry and facet the ray leaves (-1: none), asked
+    // through intersect_from.
     template <class Use>
-    std::optional<Nearest> nearest(const Ray& ray, double t_min, double t_max, Use&& use) const;
+    std::optional<Nearest> nearest(const Ray& ray, double t_min, double t_max, Use&& use, std::size_t from_k = SIZE_MAX,
+                                   int from_facet = -1, RenderStats* stats = nullptr) const;
     std::optional<Hit> intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const;
+    // The same for the object the ray leaves, from its facet `from_facet`.
+    std::optional<Hit> intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
+                                      RenderStats& stats) const;
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
     Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to) const;
     const Scene& scene_;
@@ -91,6 +112,11 @@ private:
     std::vector<const Object*> order_;
     std::vector<std::unique_ptr<MeshAccel>> mesh_accel_;  // per entry of order_, null when unused
     std::optional<ObjectBvh> bvh_;                         // over order_'s indices
+    std::vector<std::unique_ptr<FacetGraph>> facet_graph_;  // per entry of order_: bounded plane sets
+    std::vector<std::int32_t> facet_base_;                  // per entry of order_: first id in the guess cache
+    std::vector<std::size_t> order_of_;                     // Scene::objects index → order_ index
+    std::size_t facet_ids_ = 0;
+    std::uint64_t id_ = 0;                                  // this tracer, for the per-thread guesses
     bool absorbing_ = false;
     Camera::Basis camera_basis_;
 };

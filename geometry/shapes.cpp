@@ -77,8 +77,6 @@ std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, 
     return best;
 }
 
-namespace {
-
 // The bounding-sphere reject: the origin outside the sphere and the ray missing it.
 bool misses_bound(const ConvexPolyhedron& c, const Ray& r) {
     if (!(c.bound_radius > 0)) return false;
@@ -87,8 +85,6 @@ bool misses_bound(const ConvexPolyhedron& c, const Ray& r) {
     const double q = oc.squaredNorm() - c.bound_radius * c.bound_radius;
     return q > 0 && (b > 0 || b * b < q);
 }
-
-}  // namespace
 
 // The scalar reference: the slab loop as it always was. intersect() below gives the same
 // result to the last bit through the vectorised kernel (geometry/plane_set.h); the tests

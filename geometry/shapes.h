@@ -48,6 +48,9 @@ struct ConvexPolyhedron {
 
 // Bounding sphere of a convex polyhedron from its vertices (the builder knows them).
 void set_bound(ConvexPolyhedron& c, const std::vector<Vec3>& vertices);
+// Whether the ray certainly misses c's bounding sphere (none set: false); the first test of
+// every intersect(const ConvexPolyhedron&, ...).
+bool misses_bound(const ConvexPolyhedron& c, const Ray& r);
 
 // Every shape has the full set of operations below, one overload per shape; the
 // Shape-level functions dispatch with std::visit, so a shape missing one fails to compile.

@@ -1,0 +1,151 @@
+#include "geometry/facet_graph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace refract {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Sutherland–Hodgman: the part of polygon `poly` (in one plane) where n·x <= d.
+std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
+    std::vector<Vec3> out;
+    const size_t n = poly.size();
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3& a = poly[i];
+        const Vec3& b = poly[(i + 1) % n];
+        const double da = p.offset - p.normal.dot(a), db = p.offset - p.normal.dot(b);
+        if (da >= 0) out.push_back(a);
+        if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+    }
+    return out;
+}
+
+// Whether one of the n planes (coordinates in arrays, their indices as doubles) contradicts
+// the candidate leaving hit at t_g on plane g for ray r (FacetGraph::intersect). The
+// arithmetic is the slab loop's; the loop is vectorised for AVX-512F, AVX2 or the
+// baseline, chosen at load time (target clones).
+[[gnu::target_clones("avx512f", "avx2", "default")]] bool contradicts(const double* nx, const double* ny,
+                                                                       const double* nz, const double* d,
+                                                                       const double* index, size_t n, const Ray& r,
+                                                                       double t_min, double t_g, double g) {
+    const double dx = r.dir.x(), dy = r.dir.y(), dz = r.dir.z();
+    const double ox = r.origin.x(), oy = r.origin.y(), oz = r.origin.z();
+    int bad = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double denom = (nx[i] * dx + ny[i] * dy) + nz[i] * dz;
+        const double dist = d[i] - ((nx[i] * ox + ny[i] * oy) + nz[i] * oz);
+        const double t = dist / denom;
+        const bool entering = denom < 0, leaving = denom > 0;
+        bad |= static_cast<int>((!entering & !leaving) | (entering & !(t <= t_min)) |
+                                (leaving & (!(t >= t_g) | ((t == t_g) & (index[i] < g)))));
+    }
+    return bad != 0;
+}
+
+}  // namespace
+
+FacetGraph::FacetGraph(const ConvexPolyhedron& c) {
+    const size_t n = c.planes.size();
+    neighbours_.resize(n);
+    gap_.assign(n, 0.0);
+    usable_.assign(n, 0);
+    blocks_.resize(n);
+    if (!(c.bound_radius > 0) || n < 4) return;
+    const double R = c.bound_radius;
+    const double scale = c.bound_center.norm() + R;
+    tolerance_ = 1e-7 * scale;
+    for (size_t g = 0; g < n; ++g) {
+        const Plane& pg = c.planes[g];
+        // A square around the bounding sphere's section, in the plane, clipped by the rest.
+        const Vec3 nz = pg.normal;
+        const Vec3 u = (std::abs(nz.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)).cross(nz).normalized();
+        const Vec3 w = nz.cross(u);
+        const Vec3 p0 = c.bound_center + (pg.offset - nz.dot(c.bound_center)) * nz;
+        const double h = 2 * R;
+        std::vector<Vec3> poly{p0 - h * u - h * w, p0 + h * u - h * w, p0 + h * u + h * w, p0 - h * u + h * w};
+        bool empty = false;
+        for (size_t k = 0; k < n && !poly.empty(); ++k) {
+            if (k == g) continue;
+            const Plane& pk = c.planes[k];
+            if (pk.normal.dot(nz) > 1 - 1e-12) {  // parallel, same side: coincident or one redundant
+                if (pk.offset < pg.offset - tolerance_) empty = true;
+                continue;
+            }
+            poly = clip(poly, pk);
+        }
+        if (empty || poly.size() < 3) continue;
+        bool bounded = true;
+        for (const Vec3& v : poly)
+            bounded = bounded && std::abs((v - p0).dot(u)) < h * (1 - 1e-9) && std::abs((v - p0).dot(w)) < h * (1 - 1e-9);
+        double extent = 0;
+        for (const Vec3& v : poly) extent = std::max(extent, (v - poly[0]).norm());
+        if (!bounded || extent < 100 * tolerance_) continue;
+        double gap = kInf;
+        for (size_t k = 0; k < n; ++k) {
+            if (k == g) continue;
+            double m = kInf;
+            for (const Vec3& v : poly) m = std::min(m, c.planes[k].offset - c.planes[k].normal.dot(v));
+            if (m <= tolerance_) neighbours_[g].push_back(static_cast<std::int32_t>(k));
+            else gap = std::min(gap, m);
+        }
+        gap_[g] = gap;
+        usable_[g] = 1;
+        // The block: g and its neighbours, padded to a multiple of 8 with g itself (which
+        // never contradicts a hit on g, nor a ray leaving g inward).
+        std::vector<std::int32_t> closed = neighbours_[g];
+        closed.push_back(static_cast<std::int32_t>(g));
+        while (closed.size() % 8 != 0) closed.push_back(static_cast<std::int32_t>(g));
+        Block& b = blocks_[g];
+        for (const std::int32_t k : closed) {
+            const Plane& p = c.planes[static_cast<size_t>(k)];
+            b.nx.push_back(p.normal.x());
+            b.ny.push_back(p.normal.y());
+            b.nz.push_back(p.normal.z());
+            b.d.push_back(p.offset);
+            b.index.push_back(static_cast<double>(k));
+        }
+    }
+}
+
+FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max, int from,
+                                        int guess) const {
+    Local out;
+    if (!usable(from) || !(t_min >= 0)) return out;
+    if (misses_bound(c, r)) {
+        out.decided = true;
+        return out;
+    }
+    // The slab loop's arithmetic for one plane (shapes.cpp, intersect_scalar).
+    const Plane& ps = c.planes[static_cast<size_t>(from)];
+    const double denom_s = ps.normal.dot(r.dir);
+    const double dist_s = ps.offset - ps.normal.dot(r.origin);
+    if (denom_s > 0) {  // outward: the full pass's t_exit <= t_s
+        out.decided = dist_s / denom_s <= t_min;
+        return out;
+    }
+    if (!(denom_s < 0) || !(std::abs(dist_s) <= 0.25 * tolerance_) || !usable(guess)) return out;
+
+    // The guess's own t, as the slab loop computes it: the candidate hit.
+    const Plane& pg = c.planes[static_cast<size_t>(guess)];
+    const double denom_g = pg.normal.dot(r.dir);
+    const double t_g = (pg.offset - pg.normal.dot(r.origin)) / denom_g;
+    if (!(denom_g > 0) || !(t_g > t_min)) return out;
+    // No plane around `from` or `guess` may contradict it: an entering plane's t past the
+    // window's start, a leaving plane's t before t_g or equal to it with a smaller index,
+    // a plane parallel to the ray.
+    for (const int f : {from, guess}) {
+        const Block& b = blocks_[static_cast<size_t>(f)];
+        if (contradicts(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), b.nx.size(), r, t_min, t_g,
+                        static_cast<double>(guess)))
+            return out;
+    }
+    out.decided = true;
+    if (t_g < t_max) out.hit = Hit{t_g, r.at(t_g), pg.normal, guess};
+    return out;
+}
+
+}  // namespace refract

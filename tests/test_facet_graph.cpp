@@ -1,0 +1,205 @@
+// Facet-local intersection (geometry/facet_graph.h): a ray leaving a facet of a convex
+// plane set, decided from the planes around that facet and a guessed leaving facet, gives
+// the full plane loop's hit to the last bit, for right and wrong guesses; and whole
+// renders of the 1998 diamond are the same image with it and without it.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/light_pass.h"
+#include "core/render.h"
+#include "core/scene_json.h"
+#include "core/tracer.h"
+#include "geometry/facet_graph.h"
+#include "geometry/gem/brilliant.h"
+#include "geometry/shapes.h"
+
+using namespace refract;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::uint64_t bits(double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+bool identical(const std::optional<Hit>& a, const std::optional<Hit>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    if (!a) return true;
+    for (int i = 0; i < 3; ++i)
+        if (bits(a->point[i]) != bits(b->point[i]) || bits(a->normal[i]) != bits(b->normal[i])) return false;
+    return bits(a->t) == bits(b->t) && a->facet == b->facet;
+}
+
+Vec3 random_direction(std::mt19937_64& rng) {
+    std::normal_distribution<double> n(0, 1);
+    for (;;) {
+        const Vec3 v(n(rng), n(rng), n(rng));
+        if (v.norm() > 1e-6) return v.normalized();
+    }
+}
+
+// Compares the graph's decided answers with the full loop for rays leaving hits.
+struct Comparison {
+    long rays = 0, decided = 0, decided_right_guess = 0, right_guesses = 0, mismatches = 0, outward = 0,
+         outward_decided = 0;
+
+    void leave(const ConvexPolyhedron& c, const FacetGraph& g, const Hit& from, const Vec3& dir, std::mt19937_64& rng) {
+        const Ray r{from.point, dir};
+        for (const double t_max : {kInf, 0.05}) {
+            const auto want = intersect(c, r, 1e-6, t_max);
+            const bool out = dir.dot(c.planes[static_cast<size_t>(from.facet)].normal) > 0;
+            const int right = want ? want->facet : -1;
+            std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
+            for (const int guess : {right, any(rng), -1}) {
+                ++rays;
+                const FacetGraph::Local l = g.intersect(c, r, 1e-6, t_max, from.facet, guess);
+                if (out) {
+                    ++outward;
+                    outward_decided += l.decided;
+                }
+                if (!l.decided) continue;
+                ++decided;
+                if (guess == right && right >= 0) ++decided_right_guess;
+                if (!identical(l.hit, want)) ++mismatches;
+            }
+            if (!out && right >= 0) ++right_guesses;
+        }
+    }
+};
+
+// Rays from outside onto c, then from each hit inward and outward in random directions.
+Comparison compare_from_hits(const ConvexPolyhedron& c, int rays, std::uint64_t seed) {
+    const FacetGraph g(c);
+    std::mt19937_64 rng(seed);
+    Comparison cmp;
+    for (int i = 0; i < rays; ++i) {
+        const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
+        const Vec3 to = c.bound_center + 0.9 * c.bound_radius * random_direction(rng);
+        const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
+        if (!hit) continue;
+        const Vec3 n = c.planes[static_cast<size_t>(hit->facet)].normal;
+        Vec3 d = random_direction(rng);
+        if (d.dot(n) > 0) d = -d;
+        cmp.leave(c, g, *hit, d, rng);  // inward
+        cmp.leave(c, g, *hit, -d, rng);  // outward
+        // Grazing the facet, inward.
+        Vec3 along = d - d.dot(n) * n;
+        if (along.norm() > 1e-9) cmp.leave(c, g, *hit, (along.normalized() - 1e-9 * n).normalized(), rng);
+    }
+    return cmp;
+}
+
+ConvexPolyhedron brilliant() {
+    const Gem gem = build_brilliant(BrilliantCut{});
+    ConvexPolyhedron c = gem.solid;
+    set_bound(c, gem.mesh.vertices);
+    return c;
+}
+
+}  // namespace
+
+TEST_CASE("Facet-local intersection equals the full plane loop bit for bit on the round brilliant", "[geometry]") {
+    const ConvexPolyhedron c = brilliant();
+    const FacetGraph g(c);
+    int usable = 0;
+    for (int f = 0; f < g.facets(); ++f) usable += g.usable(f);
+    CHECK(usable >= 57);  // every facet of the cut (bruted girdle facets included)
+    for (int f = 0; f < g.facets(); ++f)
+        if (g.usable(f)) {
+            CHECK(g.gap(f) > 100 * g.tolerance());
+            CHECK(g.neighbours(f).size() >= 3);
+        }
+    const Comparison cmp = compare_from_hits(c, 20000, 3);
+    INFO(cmp.rays << " rays, " << cmp.decided << " decided locally");
+    CHECK(cmp.rays > 100000);
+    CHECK(cmp.mismatches == 0);
+    // Outward rays are always decided; inward ones with the right guess nearly always.
+    CHECK(cmp.outward_decided == cmp.outward);
+    CHECK(cmp.decided_right_guess > 0.99 * cmp.right_guesses);
+}
+
+TEST_CASE("Facet-local intersection equals the full plane loop on rays from the brilliant's vertices and edges", "[geometry]") {
+    const Gem gem = build_brilliant(BrilliantCut{});
+    ConvexPolyhedron c = gem.solid;
+    set_bound(c, gem.mesh.vertices);
+    const FacetGraph g(c);
+    std::mt19937_64 rng(5);
+    Comparison cmp;
+    Vec3 centre = Vec3::Zero();
+    for (const Vec3& v : gem.mesh.vertices) centre += v / static_cast<double>(gem.mesh.vertices.size());
+    for (const GemFacet& f : gem.facets)
+        for (size_t i = 0; i < f.polygon.size(); ++i) {
+            const Vec3& p = f.polygon[i];
+            const Vec3& q = f.polygon[(i + 1) % f.polygon.size()];
+            for (const Vec3& at : {p, Vec3(0.5 * (p + q))}) {
+                // The hit the full loop reports for a ray aimed at the corner or the edge.
+                const auto hit = intersect(c, Ray{2 * at - centre, (centre - at).normalized()}, 0, kInf);
+                if (!hit) continue;
+                for (int k = 0; k < 4; ++k) {
+                    const Vec3 d = random_direction(rng);
+                    cmp.leave(c, g, *hit, d, rng);
+                }
+                cmp.leave(c, g, *hit, (centre - hit->point).normalized(), rng);
+            }
+        }
+    INFO(cmp.rays << " rays, " << cmp.decided << " decided locally");
+    CHECK(cmp.rays > 5000);
+    CHECK(cmp.mismatches == 0);
+}
+
+TEST_CASE("Facet-local intersection equals the full plane loop on random polyhedra", "[geometry]") {
+    std::mt19937_64 rng(17);
+    long rays = 0, mismatches = 0, decided = 0;
+    for (int shape = 0; shape < 40; ++shape) {
+        // The hull of random tangent planes of the unit sphere: 8 to 80 facets.
+        std::uniform_int_distribution<int> count(8, 80);
+        ConvexPolyhedron c;
+        const int n = count(rng);
+        for (int k = 0; k < n; ++k) {
+            const Vec3 nrm = random_direction(rng);
+            c.planes.push_back(Plane{nrm, 1.0 + 0.2 * std::uniform_real_distribution<double>(0, 1)(rng)});
+        }
+        if (vertices(c).empty()) continue;
+        set_bound(c, vertices(c));
+        const Comparison cmp = compare_from_hits(c, 500, 100 + static_cast<std::uint64_t>(shape));
+        rays += cmp.rays;
+        mismatches += cmp.mismatches;
+        decided += cmp.decided;
+    }
+    INFO(rays << " rays, " << decided << " decided locally");
+    CHECK(rays > 50000);
+    CHECK(decided > rays / 4);
+    CHECK(mismatches == 0);
+}
+
+TEST_CASE("Ohtsuka & Kawai 1998 diamond: the same image with facet-local intersection as with the full plane loop", "[render]") {
+    Scene s = load_scene(std::string(REFRACT_SOURCE_DIR) + "/scenes/examples/ohtsuka1998-diamond.json");
+    s.camera.width = 96;
+    s.camera.height = 72;
+    s.settings.light_pass.photons = 3000;
+    RenderOptions o;
+    o.threads = 2;
+    SceneTracer::set_facet_local(false);
+    const RenderResult full = render(s, o);
+    SceneTracer::set_facet_local(true);
+    const RenderResult local = render(s, o);
+    CHECK(full.stats.facet_local == 0);
+    CHECK(local.stats.facet_local > local.stats.facet_full);
+    CHECK(local.stats.segments == full.stats.segments);
+    long differing = 0;
+    for (int j = 0; j < s.camera.height; ++j)
+        for (int i = 0; i < s.camera.width; ++i)
+            for (int c = 0; c < 3; ++c)
+                differing += bits(full.image.at(i, j)[c]) != bits(local.image.at(i, j)[c]);
+    CHECK(differing == 0);
+}
