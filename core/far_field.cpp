@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -41,8 +42,19 @@ struct Geometry {
     int bins() const { return binning == FarFieldSettings::Binning::Sphere ? nphi * ncos : nangle; }
     int bin_of(const Vec3& d) const {
         const double c = std::clamp(d.dot(w), -1.0, 1.0);
-        if (binning == FarFieldSettings::Binning::Axis)  // θ = acos c, by its bins' cosines
-            return static_cast<int>(std::upper_bound(cos_edges.begin(), cos_edges.end(), -c) - cos_edges.begin());
+        if (binning == FarFieldSettings::Binning::Axis) {  // θ = acos c, by its bins' cosines
+            // The number of edges <= −c (std::upper_bound), by a search without branches.
+            const double x = -c;
+            const double* base = cos_edges.data();
+            size_t n = cos_edges.size();
+            if (n == 0) return 0;
+            while (n > 1) {
+                const size_t half = n / 2;
+                base = base[half] <= x ? base + half : base;
+                n -= half;
+            }
+            return static_cast<int>(base - cos_edges.data()) + (*base <= x ? 1 : 0);
+        }
         const int row = std::min(ncos - 1, static_cast<int>((1.0 - c) * 0.5 * ncos));
         double phi = std::atan2(d.dot(v), d.dot(u));
         if (phi < 0) phi += 2.0 * M_PI;
@@ -76,9 +88,11 @@ void check(const FarFieldSettings& s) {
             throw InputError("far field: wavelength " + std::to_string(l) + " nm outside [360, 830] nm");
 }
 
+// One thread's sums for a group of wavelengths (w0 onwards): the bins of each, then per
+// wavelength what was not scattered.
 struct Tally {
     std::vector<std::int64_t> bins;
-    std::int64_t unscattered = 0, absorbed = 0, dropped = 0;
+    std::vector<std::int64_t> unscattered, absorbed, dropped;
     std::uint64_t segments = 0;
 };
 
@@ -90,26 +104,30 @@ struct FarFieldEnds {
     Tally& tally;
     double scale;
     int classes, components, bins;
+    size_t w0, per_wavelength;
 
     static double amount(const Entry& e) { return e.weight.mean(); }
+    size_t slot(const Entry& e) const { return static_cast<size_t>(e.band) - w0; }
+    std::int64_t* bins_of(const Entry& e) { return tally.bins.data() + slot(e) * per_wavelength; }
     void deposit(const TreeEntryT<NaturalLight>& e, int cls, int b) {
-        tally.bins[static_cast<size_t>(cls * bins + b)] += std::llround(amount(e) * scale);
+        bins_of(e)[static_cast<size_t>(cls * bins + b)] += std::llround(amount(e) * scale);
     }
     void deposit(const TreeEntryT<LightStokes>& e, int cls, int b) {
         const Vec3& d = e.ray.dir;
         const polar::Stokes S = polar::rotator(polar::frame_angle(e.pol.x, geo.stokes_x(d), d)) * e.pol.S;
+        std::int64_t* out = bins_of(e);
         for (int s = 0; s < 4; ++s)
-            tally.bins[static_cast<size_t>((cls * 4 + s) * bins + b)] += std::llround(amount(e) * S[s] * scale);
+            out[static_cast<size_t>((cls * 4 + s) * bins + b)] += std::llround(amount(e) * S[s] * scale);
     }
     void background(const Entry& e) {
         if (e.depth == 0) {
-            tally.unscattered += std::llround(amount(e) * scale);
+            tally.unscattered[slot(e)] += std::llround(amount(e) * scale);
             return;
         }
         const int cls = e.transmissions == 0 ? 0 : 1 + std::min<int>(e.reflections, classes - 2);
         deposit(e, std::min(cls, classes - 1), geo.bin_of(e.ray.dir));
     }
-    void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed += std::llround(amount(e) * scale); }
+    void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed[slot(e)] += std::llround(amount(e) * scale); }
     bool intercept(RayTreeWalkerT<P>&, const Entry&, const SurfaceHit&, typename RayTreeWalkerT<P>::List&) { return false; }
     double band_ior(const Entry& e, const SurfaceHit& h) const {
         return ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
@@ -221,12 +239,20 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
     const TreeLimits limits = ctx.limits(scene.settings);
     tbb::task_arena arena(nthreads);
     constexpr std::uint64_t kChunk = 4096;
-    for (size_t w = 0; w < r.wavelengths.size(); ++w) {
-        // Powers in units of the emitted power (the lights' spectrum cancels).
-        const double scale = kFixedScale / total;
+    // Wavelengths in groups whose bins fit a thread's tally (far_field_group); a photon is
+    // drawn once for its group and its first segment traced once, then walked at each of
+    // the group's wavelengths.
+    const size_t group = far_field_group(per_wavelength, r.wavelengths.size());
+    // Powers in units of the emitted power (the lights' spectrum cancels).
+    const double scale = kFixedScale / total;
+    for (size_t w0 = 0; w0 < r.wavelengths.size(); w0 += group) {
+        const size_t gw = std::min(group, r.wavelengths.size() - w0);
         tbb::enumerable_thread_specific<Tally> tallies([&] {
             Tally t;
-            t.bins.assign(per_wavelength, 0);
+            t.bins.assign(per_wavelength * gw, 0);
+            t.unscattered.assign(gw, 0);
+            t.absorbed.assign(gw, 0);
+            t.dropped.assign(gw, 0);
             return t;
         });
         for (const Emitter& em : emitters) {
@@ -239,19 +265,26 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                     const auto run = [&](auto payload) {
                         using P = decltype(payload);
                         RayTreeWalkerT<P> walker(tracer, limits, st);
-                        FarFieldEnds<P> ends{geo, ctx, tally, scale, r.classes, r.components, r.bins};
+                        FarFieldEnds<P> ends{geo, ctx, tally, scale, r.classes, r.components, r.bins, w0, per_wavelength};
                         typename RayTreeWalkerT<P>::List list;  // one list for the chunk's photons
                         for (std::uint64_t p = range.begin(); p != range.end(); ++p) {
-                            const auto [ray, power] = sample_photon(em, settings.seed + w * 0x9E3779B9ull, p);
+                            const auto [ray, power] = sample_photon(em, settings.seed + w0 * 0x9E3779B9ull, p);
                             TreeEntryT<P> e{ray, Vec3::Constant(power.mean())};
-                            e.band = static_cast<std::int16_t>(w);
                             if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(pol, ray.dir);
-                            list.push_back(e);
-                            const double lost0 = st.lost_depth + st.lost_limits + st.lost_threshold;
-                            walker.walk(list, ends);
-                            // The weight the walker dropped (the photon's power rides on it).
-                            const double lost = st.lost_depth + st.lost_limits + st.lost_threshold - lost0;
-                            tally.dropped += std::llround(lost * scale);
+                            const auto hit = tracer.intersect(ray, st);
+                            for (size_t w = w0; w < w0 + gw; ++w) {
+                                e.band = static_cast<std::int16_t>(w);
+                                if (!hit) {
+                                    ends.background(e);
+                                    continue;
+                                }
+                                const double lost0 = st.lost_depth + st.lost_limits + st.lost_threshold;
+                                walker.arrive(e, *hit, list, ends);
+                                walker.walk(list, ends);
+                                // The weight the walker dropped (the photon's power rides on it).
+                                const double lost = st.lost_depth + st.lost_limits + st.lost_threshold - lost0;
+                                tally.dropped[w - w0] += std::llround(lost * scale);
+                            }
                         }
                     };
                     if (exact) run(LightStokes{});
@@ -261,22 +294,29 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
             });
         }
         Tally sum;
-        sum.bins.assign(per_wavelength, 0);
+        sum.bins.assign(per_wavelength * gw, 0);
+        sum.unscattered.assign(gw, 0);
+        sum.absorbed.assign(gw, 0);
+        sum.dropped.assign(gw, 0);
         for (const Tally& t : tallies) {
-            for (size_t k = 0; k < per_wavelength; ++k) sum.bins[k] += t.bins[k];
-            sum.unscattered += t.unscattered;
-            sum.absorbed += t.absorbed;
-            sum.dropped += t.dropped;
+            for (size_t k = 0; k < sum.bins.size(); ++k) sum.bins[k] += t.bins[k];
+            for (size_t k = 0; k < gw; ++k) {
+                sum.unscattered[k] += t.unscattered[k];
+                sum.absorbed[k] += t.absorbed[k];
+                sum.dropped[k] += t.dropped[k];
+            }
             sum.segments += t.segments;
         }
-        for (size_t k = 0; k < per_wavelength; ++k)
-            r.power[w * per_wavelength + k] = static_cast<double>(sum.bins[k]) / kFixedScale;
-        r.unscattered[w] = static_cast<double>(sum.unscattered) / kFixedScale;
-        r.absorbed[w] = static_cast<double>(sum.absorbed) / kFixedScale;
-        r.dropped[w] = static_cast<double>(sum.dropped) / kFixedScale;
+        for (size_t k = 0; k < sum.bins.size(); ++k)
+            r.power[w0 * per_wavelength + k] = static_cast<double>(sum.bins[k]) / kFixedScale;
+        for (size_t k = 0; k < gw; ++k) {
+            r.unscattered[w0 + k] = static_cast<double>(sum.unscattered[k]) / kFixedScale;
+            r.absorbed[w0 + k] = static_cast<double>(sum.absorbed[k]) / kFixedScale;
+            r.dropped[w0 + k] = static_cast<double>(sum.dropped[k]) / kFixedScale;
+        }
         r.segments += sum.segments;
-        for (const Emitter& em : emitters) r.photons += em.photons;
     }
+    for (const Emitter& em : emitters) r.photons += em.photons * r.wavelengths.size();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
 }

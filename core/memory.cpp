@@ -112,8 +112,14 @@ MemoryEstimate estimate_far_field_memory(std::size_t values_per_wavelength, std:
     MemoryEstimate e;
     const double v = static_cast<double>(values_per_wavelength);
     e.add("the far-field bins (bins × classes × components × wavelengths)", v * static_cast<double>(wavelengths) * (8 + 4));
-    e.add("--threads (a tally of the bins per thread)", v * 8 * static_cast<double>(std::max(1, threads)));
+    const double group = static_cast<double>(far_field_group(values_per_wavelength, wavelengths));
+    e.add("--threads (a tally of the bins per thread)", v * group * 8 * static_cast<double>(std::max(1, threads)));
     return e;
+}
+
+std::size_t far_field_group(std::size_t values_per_wavelength, std::size_t wavelengths) {
+    const std::size_t fit = (std::size_t{1} << 21) / std::max<std::size_t>(1, values_per_wavelength);
+    return std::max<std::size_t>(1, std::min(wavelengths, fit));
 }
 
 }  // namespace refract

@@ -46,5 +46,8 @@ MemoryEstimate estimate_light_pass_memory(const Scene& scene);
 
 // A far-field run's bins (the result and one tally per thread) and its written map.
 MemoryEstimate estimate_far_field_memory(std::size_t values_per_wavelength, std::size_t wavelengths, int threads);
+// The far field's wavelengths are traced in groups that share their photons: as many as
+// keep a thread's tally of their bins within 2^21 values (at least one).
+std::size_t far_field_group(std::size_t values_per_wavelength, std::size_t wavelengths);
 
 }  // namespace refract

@@ -124,16 +124,23 @@ public:
                 ends.background(e);
                 continue;
             }
-            if (tracer_.absorbing() && !hit->entering) {  // Beer–Lambert over the segment inside
-                if (const auto a = tracer_.absorption(*hit, ends.wavelength(e))) {
-                    e.weight = e.weight.cwiseProduct(*a);
-                    e.bailout *= a->maxCoeff();
-                }
-            }
-            if (!ends.intercept(*this, e, *hit, list)) expand(e, *hit, ends.band_ior(e, *hit), list, ends);
+            arrive(e, *hit, list, ends);
             if (list.size() > peak) peak = list.size();
         }
         if (peak > stats_.peak_list) stats_.peak_list = peak;
+    }
+
+    // Entry e's ray has met its first surface at `hit` (found by the walk, or once for
+    // several entries along the same ray: the far field's wavelengths of one photon).
+    template <class Ends>
+    void arrive(Entry e, const SurfaceHit& hit, List& list, Ends& ends) {
+        if (tracer_.absorbing() && !hit.entering) {  // Beer–Lambert over the segment inside
+            if (const auto a = tracer_.absorption(hit, ends.wavelength(e))) {
+                e.weight = e.weight.cwiseProduct(*a);
+                e.bailout *= a->maxCoeff();
+            }
+        }
+        if (!ends.intercept(*this, e, hit, list)) expand(e, hit, ends.band_ior(e, hit), list, ends);
     }
 
     // ②③④ the interaction at hit h: a leaf goes to the callback, branches to the list.
