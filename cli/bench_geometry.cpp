@@ -11,6 +11,7 @@
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
 #include "core/tracer.h"
+#include "geometry/facet_graph.h"
 #include "geometry/gem/brilliant.h"
 #include "geometry/icosphere.h"
 #include "geometry/mesh_accel.h"
@@ -99,6 +100,64 @@ void kernels(int rounds) {
     for (size_t k = 0; k < names.size(); ++k) table_row(names[k], p.wall[k], p.cpu[k], static_cast<double>(rays.size()), hits[k]);
     std::printf("  vectorised plane set / Embree alone, paired medians: %.2fx (target: plane set >= 20 Mrays/s per core)\n",
                 median(p.wall[2]) / median(p.wall[1]));
+    print_load("after");
+    facet_local(solid, rounds);
+}
+
+namespace {
+
+// A ray leaving hit `from` on a facet of the gem, with a guess of the facet it leaves through.
+struct FacetQuery {
+    Ray ray;
+    int from, guess;
+};
+
+}  // namespace
+
+// Rays as a render of the gem makes them: each leaving the hit of an outside ray on a
+// facet, half inward (the guess: the leaving facet of a ray 0.3° away, as the neighbouring
+// wavelength of a spectral split), half outward (no guess needed). The full plane loop
+// against facet-local intersection with the full loop where it is undecided.
+void facet_local(const ConvexPolyhedron& solid, int rounds) {
+    const FacetGraph graph(solid);
+    std::mt19937_64 g(3);
+    std::vector<FacetQuery> rays;
+    while (rays.size() < 1000000) {
+        const Vec3 from = solid.bound_center + 3 * solid.bound_radius * random_direction(g);
+        const Vec3 to = solid.bound_center + 0.9 * solid.bound_radius * random_direction(g);
+        const auto h = intersect(solid, Ray{from, (to - from).normalized()}, 0, kInf);
+        if (!h) continue;
+        const Vec3 n = solid.planes[static_cast<size_t>(h->facet)].normal;
+        Vec3 d = random_direction(g);
+        if (d.dot(n) > 0) d = -d;
+        const Vec3 near = (d + 0.005 * random_direction(g)).normalized();
+        const auto companion = intersect(solid, Ray{h->point, near}, 1e-6, kInf);
+        rays.push_back({Ray{h->point, d}, h->facet, companion ? companion->facet : -1});
+        rays.push_back({Ray{h->point, -d}, h->facet, -1});
+    }
+    std::printf("Rays leaving the brilliant's facets: %zu, half inward (guess: the leaving facet of a ray 0.3 degrees "
+                "away), half outward; one thread; %d paired rounds\n", rays.size(), rounds);
+    print_load("before");
+    long hits[2] = {0, 0}, local = 0;
+    const Paired p = paired_runs(2, rounds, [&](size_t k) {
+        long n = 0, decided = 0;
+        for (const FacetQuery& q : rays) {
+            if (k == 0) {
+                n += intersect(solid, q.ray, 1e-6, kInf).has_value();
+                continue;
+            }
+            const FacetGraph::Local l = graph.intersect(solid, q.ray, 1e-6, kInf, q.from, q.guess);
+            decided += l.decided;
+            n += l.decided ? l.hit.has_value() : intersect(solid, q.ray, 1e-6, kInf).has_value();
+        }
+        hits[k] = n;
+        if (k == 1) local = decided;
+    });
+    table_header("Mrays/s");
+    table_row("full plane loop (vectorised)", p.wall[0], p.cpu[0], static_cast<double>(rays.size()), hits[0]);
+    table_row("facet-local, full loop when undecided", p.wall[1], p.cpu[1], static_cast<double>(rays.size()), hits[1]);
+    std::printf("  decided locally: %.1f %% of the rays; facet-local / full loop, paired medians: %.2fx\n",
+                100.0 * static_cast<double>(local) / static_cast<double>(rays.size()), median(p.wall[0]) / median(p.wall[1]));
     print_load("after");
 }
 

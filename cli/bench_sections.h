@@ -3,12 +3,16 @@
 // paired timings (docs/performance.md).
 #include <string>
 
+#include "geometry/shapes.h"
+
 namespace refract::cli::bench {
 
 // The round brilliant's intersection, on the same rays: the plane-set kernel (scalar loop
 // and the vectorised one) against Embree on the gem's triangles, alone and with refract's
 // double-precision refinement.
 void kernels(int rounds);
+// Rays leaving the brilliant's facets: the full plane loop against facet-local intersection.
+void facet_local(const ConvexPolyhedron& solid, int rounds);
 
 // Triangle meshes from 80 to 327 680 triangles (icospheres): refract's mesh search
 // (Embree + refinement) against Embree alone on the same rays, and the linear search

@@ -32,7 +32,8 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
     for (size_t k = 0; k < order_.size(); ++k) {
         order_of_[static_cast<size_t>(order_[k] - scene.objects.data())] = k;
         const auto* c = std::get_if<ConvexPolyhedron>(&order_[k]->shape);
-        if (!c || c->planes.size() < kMinFacetPlanes || !(c->bound_radius > 0)) continue;
+        if (!c || c->planes.size() < kMinFacetPlanes || c->planes.size() > kMaxFacetPlanes || !(c->bound_radius > 0))
+            continue;
         facet_graph_[k] = std::make_unique<FacetGraph>(*c);
         facet_base_[k] = static_cast<std::int32_t>(facet_ids_);
         facet_ids_ += c->planes.size();

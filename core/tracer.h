@@ -25,7 +25,8 @@ public:
     explicit SceneTracer(const Scene& scene);
     ~SceneTracer();
     static constexpr size_t kBvhMinObjects = 64;  // the cross-over measured by `refract bench --objects`
-    static constexpr size_t kMinFacetPlanes = 8;   // plane sets given facet-local intersection
+    // Plane sets given facet-local intersection (its facet polygons cost O(planes²) to build).
+    static constexpr size_t kMinFacetPlanes = 8, kMaxFacetPlanes = 4096;
 
     const Scene& scene() const { return scene_; }
     const RenderSettings& settings() const { return scene_.settings; }
