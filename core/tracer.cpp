@@ -25,15 +25,14 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
     for (size_t k = 0; k < order_.size(); ++k)
         if (const auto* m = std::get_if<TriangleMesh>(&order_[k]->shape); m && m->triangles.size() >= MeshAccel::kMinTriangles)
             mesh_accel_[k] = std::make_unique<MeshAccel>(*m);
-    // Facet-local intersection for bounded plane sets of kMinFacetPlanes planes or more.
+    // Facet-local intersection for plane sets of kMinFacetPlanes to kMaxFacetPlanes planes.
     order_of_.assign(scene.objects.size(), 0);
     facet_graph_.resize(order_.size());
     facet_base_.assign(order_.size(), -1);
     for (size_t k = 0; k < order_.size(); ++k) {
         order_of_[static_cast<size_t>(order_[k] - scene.objects.data())] = k;
         const auto* c = std::get_if<ConvexPolyhedron>(&order_[k]->shape);
-        if (!c || c->planes.size() < kMinFacetPlanes || c->planes.size() > kMaxFacetPlanes || !(c->bound_radius > 0))
-            continue;
+        if (!c || c->planes.size() < kMinFacetPlanes || c->planes.size() > kMaxFacetPlanes) continue;
         facet_graph_[k] = std::make_unique<FacetGraph>(*c);
         facet_base_[k] = static_cast<std::int32_t>(facet_ids_);
         facet_ids_ += c->planes.size();
@@ -224,7 +223,7 @@ Vec3 SceneTracer::light_transmittance(const Vec3& from, const Vec3& to, RenderSt
     // each crossing multiplies by the filter colour (clear glass casts no shadow).
     // Emissive highlight spheres never cast shadows (POV-Ray looks_like).
     ++stats.shadow_rays;
-    if (scene_.settings.compat == Compat::PovRay) return light_transmittance_pov(from, to);
+    if (scene_.settings.compat == Compat::PovRay) return light_transmittance_pov(from, to, stats);
     const Vec3 delta = to - from;
     const double dist = delta.norm();
     const Ray ray{from, delta / dist};
@@ -234,7 +233,7 @@ Vec3 SceneTracer::light_transmittance(const Vec3& from, const Vec3& to, RenderSt
     return blocker ? Vec3(0, 0, 0) : Vec3(1, 1, 1);
 }
 
-Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) const {
+Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to, RenderStats& stats) const {
     // POV-Ray 3.7 point-light shadow ray (trace.cpp TracePointLightShadowRay): a straight
     // ray; the nearest hit farther than kPovShadowTolerance from the current origin and
     // nearer than kPovShadowTolerance to the light is taken; an opaque object blocks, a
@@ -244,11 +243,14 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) cons
     double remaining = (to - from).norm();
     const Vec3 dir = (to - from) / remaining;
     Vec3 t(1, 1, 1);
+    size_t from_k = SIZE_MAX;  // after the first crossing: the object and facet the ray leaves
+    int from_facet = -1;
     while (true) {
         const Ray ray{origin, dir};
-        const auto n = nearest(ray, kPovShadowTolerance, remaining, [&](size_t k) {
-            return !scene_.materials[order_[k]->material].is<material::Emissive>();
-        });
+        const auto n = nearest(
+            ray, kPovShadowTolerance, remaining,
+            [&](size_t k) { return !scene_.materials[order_[k]->material].is<material::Emissive>(); }, from_k, from_facet,
+            &stats);
         if (!n || n->hit.t >= remaining - kPovShadowTolerance) return t;
         const Hit* best = &n->hit;
         const Material* best_m = &scene_.materials[order_[n->k]->material];
@@ -259,6 +261,8 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to) cons
         if (glass->absorption && best->normal.dot(dir) > 0) t = t.cwiseProduct(pov_fade(glass->absorption->rgb, best->t));
         origin = best->point;
         remaining -= best->t;
+        from_k = n->k;
+        from_facet = best->facet;
     }
 }
 

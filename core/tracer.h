@@ -106,7 +106,7 @@ private:
     std::optional<Hit> intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
                                       RenderStats& stats) const;
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;
-    Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to) const;
+    Vec3 light_transmittance_pov(const Vec3& from, const Vec3& to, RenderStats& stats) const;
     const Scene& scene_;
     // The order in which intersect() tests the objects; a hit replaces the best one only
     // when strictly nearer, so on an exact tie (coincident surfaces) the first one wins.

@@ -48,42 +48,79 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
 
 }  // namespace
 
+namespace {
+
+// The polygon of plane g of c: a square of half-size h around the section of the sphere
+// (centre, ·) clipped by every other plane; `unbounded` when it still touches the square.
+struct Polygon {
+    std::vector<Vec3> corners;
+    bool unbounded = false;
+};
+Polygon facet_polygon(const ConvexPolyhedron& c, size_t g, const Vec3& centre, double h, double tolerance) {
+    const Plane& pg = c.planes[g];
+    const Vec3 nz = pg.normal;
+    const Vec3 u = (std::abs(nz.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)).cross(nz).normalized();
+    const Vec3 w = nz.cross(u);
+    const Vec3 p0 = centre + (pg.offset - nz.dot(centre)) * nz;
+    Polygon out;
+    std::vector<Vec3> poly{p0 - h * u - h * w, p0 + h * u - h * w, p0 + h * u + h * w, p0 - h * u + h * w};
+    for (size_t k = 0; k < c.planes.size() && !poly.empty(); ++k) {
+        if (k == g) continue;
+        const Plane& pk = c.planes[k];
+        if (pk.normal.dot(nz) > 1 - 1e-12) {  // parallel, same side: coincident or one redundant
+            if (pk.offset < pg.offset - tolerance) return out;
+            continue;
+        }
+        poly = clip(poly, pk);
+    }
+    for (const Vec3& v : poly)
+        out.unbounded = out.unbounded || !(std::abs((v - p0).dot(u)) < h * (1 - 1e-9) && std::abs((v - p0).dot(w)) < h * (1 - 1e-9));
+    out.corners = std::move(poly);
+    return out;
+}
+
+}  // namespace
+
 FacetGraph::FacetGraph(const ConvexPolyhedron& c) {
     const size_t n = c.planes.size();
     neighbours_.resize(n);
     gap_.assign(n, 0.0);
     usable_.assign(n, 0);
     blocks_.resize(n);
-    if (!(c.bound_radius > 0) || n < 4) return;
-    const double R = c.bound_radius;
-    const double scale = c.bound_center.norm() + R;
+    if (n < 4) return;
+    Vec3 centre = c.bound_center;
+    double R = c.bound_radius;
+    if (!(R > 0)) {
+        // No bounding sphere: the corners of every facet, from squares far larger than the
+        // offsets, give one (an unbounded polyhedron has a facet that touches its square).
+        double m = 1;
+        for (const Plane& p : c.planes) m = std::max(m, std::abs(p.offset));
+        const double h = 1e4 * m;
+        Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
+        for (size_t g = 0; g < n; ++g) {
+            const Polygon poly = facet_polygon(c, g, Vec3::Zero(), h, 1e-7 * h);
+            if (poly.unbounded) return;
+            for (const Vec3& v : poly.corners) {
+                lo = lo.cwiseMin(v);
+                hi = hi.cwiseMax(v);
+            }
+        }
+        if (!(lo.x() <= hi.x())) return;
+        centre = 0.5 * (lo + hi);
+        R = 0;
+        for (size_t g = 0; g < n; ++g)
+            for (const Vec3& v : facet_polygon(c, g, Vec3::Zero(), h, 1e-7 * h).corners) R = std::max(R, (v - centre).norm());
+        R = R * (1 + 1e-6) + 1e-12;
+    }
+    const double scale = centre.norm() + R;
     tolerance_ = 1e-7 * scale;
     for (size_t g = 0; g < n; ++g) {
-        const Plane& pg = c.planes[g];
-        // A square around the bounding sphere's section, in the plane, clipped by the rest.
-        const Vec3 nz = pg.normal;
-        const Vec3 u = (std::abs(nz.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)).cross(nz).normalized();
-        const Vec3 w = nz.cross(u);
-        const Vec3 p0 = c.bound_center + (pg.offset - nz.dot(c.bound_center)) * nz;
-        const double h = 2 * R;
-        std::vector<Vec3> poly{p0 - h * u - h * w, p0 + h * u - h * w, p0 + h * u + h * w, p0 - h * u + h * w};
-        bool empty = false;
-        for (size_t k = 0; k < n && !poly.empty(); ++k) {
-            if (k == g) continue;
-            const Plane& pk = c.planes[k];
-            if (pk.normal.dot(nz) > 1 - 1e-12) {  // parallel, same side: coincident or one redundant
-                if (pk.offset < pg.offset - tolerance_) empty = true;
-                continue;
-            }
-            poly = clip(poly, pk);
-        }
-        if (empty || poly.size() < 3) continue;
-        bool bounded = true;
-        for (const Vec3& v : poly)
-            bounded = bounded && std::abs((v - p0).dot(u)) < h * (1 - 1e-9) && std::abs((v - p0).dot(w)) < h * (1 - 1e-9);
+        const Polygon polygon = facet_polygon(c, g, centre, 2 * R, tolerance_);
+        const std::vector<Vec3>& poly = polygon.corners;
+        if (poly.size() < 3) continue;
         double extent = 0;
         for (const Vec3& v : poly) extent = std::max(extent, (v - poly[0]).norm());
-        if (!bounded || extent < 100 * tolerance_) continue;
+        if (polygon.unbounded || extent < 100 * tolerance_) continue;
         double gap = kInf;
         for (size_t k = 0; k < n; ++k) {
             if (k == g) continue;

@@ -36,9 +36,9 @@ namespace refract {
 
 class FacetGraph {
 public:
-    // The polygons of every plane of c, clipped by all the others (O(n²) small clips).
-    // c must be bounded with its bounding sphere set (bound_radius > 0); otherwise no
-    // facet is usable.
+    // The polygons of every plane of c, clipped by all the others (O(n²) small clips),
+    // within c's bounding sphere (one is found from the polygons when c has none). When c
+    // is unbounded no facet is usable.
     explicit FacetGraph(const ConvexPolyhedron& c);
 
     int facets() const { return static_cast<int>(neighbours_.size()); }
