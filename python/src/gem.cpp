@@ -1,0 +1,244 @@
+// The round brilliant cut (geometry/gem/brilliant.h) and the experiments (experiments/).
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "experiments/drivers.h"
+#include "geometry/error.h"
+#include "geometry/gem/brilliant.h"
+#include "python/src/bindings.h"
+
+namespace refract::python {
+
+namespace {
+
+py::dict proportions(const BrilliantProportions& p) {
+    py::dict d;
+    d["table"] = p.table;
+    d["crown_angle"] = p.crown_angle;
+    d["pavilion_angle"] = p.pavilion_angle;
+    d["star"] = p.star;
+    d["lower_half"] = p.lower_half;
+    d["girdle"] = p.girdle;
+    d["culet"] = p.culet;
+    d["crown_height"] = p.crown_height;
+    d["pavilion_depth"] = p.pavilion_depth;
+    d["total_depth"] = p.total_depth;
+    return d;
+}
+
+// The parameters by name, as BrilliantCut spells them.
+using Setter = std::function<void(BrilliantCut&, double, const std::string&)>;
+const std::map<std::string, Setter>& cut_parameters() {
+    static const std::map<std::string, Setter> p = [] {
+        std::map<std::string, Setter> m;
+        auto real = [](double BrilliantCut::*f) { return [f](BrilliantCut& c, double v, const std::string&) { c.*f = v; }; };
+        auto integer = [](int BrilliantCut::*f) {
+            return [f](BrilliantCut& c, double v, const std::string& name) {
+                if (!(std::floor(v) == v && std::abs(v) < 1e9))
+                    throw InputError("cut_brilliant: " + name + " = " + format_value(v) + ": must be an integer");
+                c.*f = static_cast<int>(v);
+            };
+        };
+        m["table"] = real(&BrilliantCut::table);
+        m["crown_angle"] = real(&BrilliantCut::crown_angle);
+        m["pavilion_angle"] = real(&BrilliantCut::pavilion_angle);
+        m["star"] = real(&BrilliantCut::star);
+        m["lower_half"] = real(&BrilliantCut::lower_half);
+        m["girdle"] = real(&BrilliantCut::girdle);
+        m["culet"] = real(&BrilliantCut::culet);
+        m["girdle_facets"] = integer(&BrilliantCut::girdle_facets);
+        m["bruted_planes"] = integer(&BrilliantCut::bruted_planes);
+        return m;
+    }();
+    return p;
+}
+
+py::dict cut_dict(const BrilliantCut& c) {
+    py::dict d;
+    d["table"] = c.table;
+    d["crown_angle"] = c.crown_angle;
+    d["pavilion_angle"] = c.pavilion_angle;
+    d["star"] = c.star;
+    d["lower_half"] = c.lower_half;
+    d["girdle"] = c.girdle;
+    d["culet"] = c.culet;
+    d["girdle_facets"] = c.girdle_facets;
+    d["bruted_planes"] = c.bruted_planes;
+    return d;
+}
+
+py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
+    BrilliantCut cut = preset.is_none() ? BrilliantCut{} : brilliant_preset(preset.cast<std::string>());
+    for (const auto& kv : params) {
+        const std::string name = py::str(kv.first);
+        const auto it = cut_parameters().find(name);
+        if (it == cut_parameters().end()) {
+            std::string known;
+            for (const auto& p : cut_parameters()) known += (known.empty() ? "" : ", ") + p.first;
+            throw InputError("cut_brilliant: unknown parameter '" + name + "' (known: " + known + ")");
+        }
+        double v = 0;
+        try {
+            v = kv.second.cast<double>();
+        } catch (const py::cast_error&) {
+            throw InputError("cut_brilliant: " + name + ": must be a number");
+        }
+        it->second(cut, v, name);
+    }
+    Gem gem;
+    {
+        py::gil_scoped_release nogil;
+        gem = build_brilliant(cut);
+    }
+    const auto nv = static_cast<py::ssize_t>(gem.mesh.vertices.size());
+    const auto nt = static_cast<py::ssize_t>(gem.mesh.triangles.size());
+    const auto nf = static_cast<py::ssize_t>(gem.facets.size());
+    py::array_t<double> vertices({nv, py::ssize_t(3)});
+    py::array_t<std::int64_t> triangles({nt, py::ssize_t(3)});
+    py::array_t<std::int64_t> triangle_facet(nt);
+    py::array_t<double> planes({nf, py::ssize_t(4)});
+    auto V = vertices.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < nv; ++i)
+        for (int k = 0; k < 3; ++k) V(i, k) = gem.mesh.vertices[static_cast<size_t>(i)][k];
+    auto T = triangles.mutable_unchecked<2>();
+    auto TF = triangle_facet.mutable_unchecked<1>();
+    for (py::ssize_t i = 0; i < nt; ++i) {
+        for (int k = 0; k < 3; ++k) T(i, k) = gem.mesh.triangles[static_cast<size_t>(i)][k];
+        TF(i) = gem.triangle_facet[static_cast<size_t>(i)];
+    }
+    auto P = planes.mutable_unchecked<2>();
+    py::list facets, labels;
+    for (py::ssize_t i = 0; i < nf; ++i) {
+        const GemFacet& f = gem.facets[static_cast<size_t>(i)];
+        for (int k = 0; k < 3; ++k) P(i, k) = f.plane.normal[k];
+        P(i, 3) = f.plane.offset;
+        labels.append(f.label);
+        py::dict fd;
+        fd["label"] = f.label;
+        fd["kind"] = facet_kind(f.label);
+        fd["vertex_ids"] = f.vertex_ids;
+        facets.append(fd);
+    }
+    py::dict counts;
+    for (const auto& [kind, n] : facet_counts(gem)) counts[py::str(kind)] = n;
+    py::dict d;
+    d["vertices"] = vertices;
+    d["triangles"] = triangles;
+    d["triangle_facet"] = triangle_facet;
+    d["planes"] = planes;
+    d["labels"] = labels;
+    d["facets"] = facets;
+    d["facet_counts"] = counts;
+    d["measured"] = proportions(gem.measured);
+    d["closed_form"] = proportions(closed_form_proportions(cut));
+    d["cut"] = cut_dict(cut);
+    d["girdle_description"] = girdle_description(cut);
+    return d;
+}
+
+// ---- Experiments: results as dicts ------------------------------------------------------
+
+py::dict optics_bench_dict(const experiments::optics_bench::Result& r) {
+    py::dict d;
+    d["quick"] = r.quick;
+    d["seconds"] = r.seconds;
+    py::list bins, classes, rainbow, prism, slab;
+    for (const auto& b : r.drop.bins)
+        bins.append(py::dict(py::arg("cls") = b.cls, py::arg("theta0_deg") = b.theta0_deg, py::arg("theta1_deg") = b.theta1_deg,
+                             py::arg("measured") = b.measured, py::arg("measured_s") = b.measured_s,
+                             py::arg("measured_p") = b.measured_p, py::arg("closed") = b.closed,
+                             py::arg("closed_s") = b.closed_s, py::arg("closed_p") = b.closed_p));
+    for (const auto& c : r.drop.classes)
+        classes.append(py::dict(py::arg("cls") = c.cls, py::arg("total") = c.total, py::arg("total_closed") = c.total_closed,
+                                py::arg("max_bin_error") = c.max_bin_error, py::arg("max_z") = c.max_z));
+    d["drop"] = py::dict(py::arg("n") = r.drop.n, py::arg("photons") = r.drop.photons, py::arg("bins") = bins,
+                         py::arg("classes") = classes, py::arg("dropped") = r.drop.dropped,
+                         py::arg("seconds") = r.drop.seconds);
+    for (const auto& w : r.rainbow.rows)
+        rainbow.append(py::dict(py::arg("wavelength_nm") = w.wavelength_nm, py::arg("n") = w.n,
+                                py::arg("primary") = w.primary, py::arg("primary_closed") = w.primary_closed,
+                                py::arg("secondary") = w.secondary, py::arg("secondary_closed") = w.secondary_closed));
+    d["rainbow"] = py::dict(py::arg("bin_deg") = r.rainbow.bin_deg, py::arg("photons") = r.rainbow.photons,
+                            py::arg("rows") = rainbow, py::arg("max_error") = r.rainbow.max_error,
+                            py::arg("seconds") = r.rainbow.seconds);
+    for (const auto& p : r.prism.rows)
+        prism.append(py::dict(py::arg("wavelength_nm") = p.wavelength_nm, py::arg("n") = p.n,
+                              py::arg("deviation") = p.deviation, py::arg("deviation_closed") = p.deviation_closed));
+    d["prism"] = py::dict(py::arg("apex_deg") = r.prism.apex_deg, py::arg("incidence_deg") = r.prism.incidence_deg,
+                          py::arg("bin_deg") = r.prism.bin_deg, py::arg("rows") = prism,
+                          py::arg("max_error") = r.prism.max_error, py::arg("seconds") = r.prism.seconds);
+    for (const auto& s : r.slab.rows)
+        slab.append(py::dict(py::arg("incidence_deg") = s.incidence_deg, py::arg("T_s") = s.T_s, py::arg("T_p") = s.T_p,
+                             py::arg("T") = s.T, py::arg("T_s_closed") = s.T_s_closed, py::arg("T_p_closed") = s.T_p_closed,
+                             py::arg("T_closed") = s.T_closed));
+    d["slab"] = py::dict(py::arg("n") = r.slab.n, py::arg("rows") = slab, py::arg("max_error") = r.slab.max_error,
+                         py::arg("seconds") = r.slab.seconds);
+    return d;
+}
+
+py::list sphere_points_list(const std::vector<experiments::polarisation::SpherePoint>& pts) {
+    const auto& classes = experiments::polarisation::path_classes();
+    py::list l;
+    for (const auto& p : pts)
+        l.append(py::dict(py::arg("n") = p.n, py::arg("theta_deg") = p.theta_deg,
+                          py::arg("path") = classes[static_cast<size_t>(p.cls)].name,
+                          py::arg("stokes") = py::make_tuple(p.S[0], p.S[1], p.S[2], p.S[3]), py::arg("dop") = p.dop,
+                          py::arg("dop_closed") = p.dop_closed, py::arg("s1") = p.s1, py::arg("s1_closed") = p.s1_closed));
+    return l;
+}
+
+}  // namespace
+
+void bind_gem(py::module_& m) {
+    m.def("brilliant_presets", &brilliant_preset_names, "Named brilliant-cut presets.");
+    m.def("_cut_brilliant", &cut_brilliant, py::arg("preset"), py::arg("params"));
+}
+
+void bind_experiments(py::module_& m) {
+    namespace ex = refract::experiments;
+    m.def("experiments", [] {
+        py::list l;
+        for (const auto& e : ex::all()) l.append(py::dict(py::arg("name") = e.name, py::arg("description") = e.description));
+        return l;
+    }, "The experiment drivers, in the order `refract reproduce` runs them.");
+    m.def("run_experiment", [](const std::string& name, const std::string& out_dir, int threads, bool quick) {
+        const ex::Experiment& e = ex::find(name);
+        ex::ExperimentOptions opt{out_dir, threads, quick};
+        py::gil_scoped_release nogil;
+        e.run(opt);
+    }, py::arg("name"), py::arg("out_dir"), py::arg("threads") = 0, py::arg("quick") = false,
+       "Runs one experiment driver, writing its CSV, figures and summary.md into out_dir.");
+    m.def("optics_bench", [](bool quick, int threads) {
+        ex::optics_bench::Result r;
+        {
+            py::gil_scoped_release nogil;
+            r = ex::optics_bench::compute(ex::ExperimentOptions{"", threads, quick});
+        }
+        return optics_bench_dict(r);
+    }, py::arg("quick") = true, py::arg("threads") = 0,
+       "optics-bench measured into a dict: drop classes and bins, rainbow, prism and slab rows with closed forms.");
+    m.def("polarisation_sphere", [](double n, const std::vector<double>& angles_deg) {
+        std::vector<ex::polarisation::SpherePoint> pts;
+        {
+            py::gil_scoped_release nogil;
+            pts = ex::polarisation::sphere_points(n, angles_deg);
+        }
+        return sphere_points_list(pts);
+    }, py::arg("n"), py::arg("angles_deg"),
+       "polarisation, part 1: per incidence angle and path class the Stokes vector of natural light through a "
+       "sphere of index n, its degree of polarisation and the closed form.");
+    m.def("gem_proportions", [](const std::string& preset) {
+        const Gem gem = build_brilliant(brilliant_preset(preset));
+        py::list l;
+        for (const auto& r : ex::gem_geometry::proportion_rows(preset, gem))
+            l.append(py::dict(py::arg("preset") = r.preset, py::arg("quantity") = r.quantity, py::arg("unit") = r.unit,
+                              py::arg("source") = r.source, py::arg("expected") = r.expected,
+                              py::arg("measured") = r.measured));
+        return l;
+    }, py::arg("preset"), "gem-geometry: the preset's proportions, expected against measured on the exact polyhedron.");
+}
+
+}  // namespace refract::python
