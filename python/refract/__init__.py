@@ -32,6 +32,8 @@ __all__ = [
     "trace", "trace_pixel",
 ]
 __version__ = "0.1"
+for _c in (Dispersion, FresnelTerms, InputError, Scene):
+    _c.__module__ = "refract"
 
 
 def scene(source, name=None):

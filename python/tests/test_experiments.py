@@ -1,0 +1,45 @@
+"""The experiment drivers from Python: the list, results as data, a run into files."""
+import pytest
+
+import refract
+
+
+def test_every_driver_is_listed_in_reproduce_order():
+    names = [e["name"] for e in refract.experiments()]
+    assert names == ["yasuda1984", "rtiow-dielectric", "gem-geometry", "ohtsuka1998", "polarisation", "optics-bench"]
+    assert all(e["description"] for e in refract.experiments())
+
+
+def test_the_sphere_degree_of_polarisation_matches_its_closed_form():
+    pts = refract.polarisation_sphere(1.5, [10.0, 40.0, 70.0])
+    assert len(pts) == 12  # 3 angles × 4 path classes
+    assert {p["path"] for p in pts} == {"reflection", "transmission", "1 internal", "2 internal"}
+    for p in pts:
+        assert p["dop"] == pytest.approx(p["dop_closed"], abs=1e-9)
+
+
+def test_gem_proportions_measured_match_expected():
+    rows = refract.gem_proportions("tolkowsky")
+    assert len(rows) > 5
+    for r in rows:
+        assert r["measured"] == pytest.approx(r["expected"], abs=1e-6), r["quantity"]
+
+
+def test_an_unknown_experiment_raises_listing_the_known_ones(tmp_path):
+    with pytest.raises(ValueError, match="optics-bench"):
+        refract.run_experiment("rainbow", str(tmp_path))
+
+
+def test_optics_bench_returns_its_measurements_beside_the_closed_forms():
+    r = refract.optics_bench(quick=True, threads=2)
+    assert r["quick"]
+    prism = r["prism"]
+    assert prism["apex_deg"] == 60 and len(prism["rows"]) > 2
+    for row in prism["rows"]:
+        assert abs(row["deviation"] - row["deviation_closed"]) <= prism["max_error"] + 1e-12
+    assert prism["max_error"] < 0.05  # degrees
+    slab = r["slab"]
+    for row in slab["rows"]:
+        assert row["T_s"] == pytest.approx(row["T_s_closed"], abs=slab["max_error"] + 1e-12)
+        assert row["T_s"] <= row["T_p"] + 1e-12  # s is reflected more than p
+    assert {c["cls"] for c in r["drop"]["classes"]} >= {0, 1, 2, 3}
