@@ -6,6 +6,11 @@ refract.InputError (a ValueError) naming the file or source, the field or the pa
 """
 import os as _os
 
+# An installed package carries the image module beside it (the build tree's is found by core).
+_image_io = _os.path.join(_os.path.dirname(__file__), "librefract_image_io.so")
+if not _os.environ.get("REFRACT_IMAGE_IO") and _os.path.exists(_image_io):
+    _os.environ["REFRACT_IMAGE_IO"] = _image_io
+
 from . import _refract
 from ._refract import (  # noqa: F401  (the public API)
     Dispersion,
