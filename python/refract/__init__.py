@@ -20,6 +20,7 @@ from ._refract import (  # noqa: F401  (the public API)
     brilliant_presets,
     experiments,
     fraunhofer,
+    gem_geometry,
     gem_proportions,
     load_scene,
     material,
@@ -32,7 +33,7 @@ from ._refract import (  # noqa: F401  (the public API)
 
 __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
-    "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_proportions", "load_scene", "material",
+    "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
     "materials", "n", "optics", "optics_bench", "polarisation_sphere", "render", "run_experiment", "scene",
     "trace", "trace_pixel",
 ]

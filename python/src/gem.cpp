@@ -230,6 +230,37 @@ void bind_experiments(py::module_& m) {
     }, py::arg("n"), py::arg("angles_deg"),
        "polarisation, part 1: per incidence angle and path class the Stokes vector of natural light through a "
        "sphere of index n, its degree of polarisation and the closed form.");
+    m.def("gem_geometry", [](bool quick, int threads) {
+        ex::gem_geometry::Result r;
+        {
+            py::gil_scoped_release nogil;
+            r = ex::gem_geometry::compute(ex::ExperimentOptions{"", threads, quick});
+        }
+        const py::object loads = py::module_::import("json").attr("loads");
+        py::list presets;
+        for (const auto& p : r.presets) {
+            py::list rows;
+            for (const auto& q : p.proportions)
+                rows.append(py::dict(py::arg("quantity") = q.quantity, py::arg("unit") = q.unit, py::arg("source") = q.source,
+                                     py::arg("expected") = q.expected, py::arg("measured") = q.measured));
+            py::dict counts;
+            for (const auto& [kind, n] : p.facet_counts) counts[py::str(kind)] = n;
+            const auto& t = p.timing;
+            const py::ssize_t W = p.render.image.width, H = p.render.image.height;
+            py::array_t<double> rgb({H, W, py::ssize_t(3)});
+            std::copy(p.render.image.rgb.begin(), p.render.image.rgb.end(), rgb.mutable_data());
+            presets.append(py::dict(
+                py::arg("preset") = p.preset, py::arg("proportions") = rows, py::arg("facet_counts") = counts,
+                py::arg("timing") = py::dict(py::arg("planes") = t.planes, py::arg("triangles") = t.triangles,
+                                             py::arg("rays") = t.rays, py::arg("hits") = t.hits, py::arg("agree") = t.agree,
+                                             py::arg("plane_ns") = t.plane_ns, py::arg("mesh_ns") = t.mesh_ns),
+                py::arg("scene") = loads(p.scene.dump()), py::arg("rgb") = rgb,
+                py::arg("render_seconds") = p.render.stats.seconds));
+        }
+        return py::dict(py::arg("quick") = r.quick, py::arg("worst") = r.worst, py::arg("presets") = presets);
+    }, py::arg("quick") = true, py::arg("threads") = 0,
+       "gem-geometry measured into a dict: per preset the proportions, facet counts, plane-set vs mesh timing, "
+       "the rendered diamond (rgb) and its scene.");
     m.def("gem_proportions", [](const std::string& preset) {
         const Gem gem = build_brilliant(brilliant_preset(preset));
         py::list l;

@@ -43,3 +43,14 @@ def test_optics_bench_returns_its_measurements_beside_the_closed_forms():
         assert row["T_s"] == pytest.approx(row["T_s_closed"], abs=slab["max_error"] + 1e-12)
         assert row["T_s"] <= row["T_p"] + 1e-12  # s is reflected more than p
     assert {c["cls"] for c in r["drop"]["classes"]} >= {0, 1, 2, 3}
+
+
+def test_gem_geometry_returns_its_data_and_renders_without_writing_files():
+    r = refract.gem_geometry(quick=True, threads=2)
+    assert [p["preset"] for p in r["presets"]] == refract.brilliant_presets()
+    assert r["worst"] < 1e-9
+    for p in r["presets"]:
+        assert p["timing"]["agree"] == p["timing"]["rays"]  # plane set and mesh find the same hits
+        assert p["rgb"].ndim == 3 and p["rgb"].shape[2] == 3 and p["rgb"].max() > 0
+        assert p["facet_counts"]["table"] == 1
+        assert p["scene"]["objects"]
