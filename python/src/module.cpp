@@ -46,7 +46,12 @@ namespace {
 // ---- Python values to JSON, for the scene reader --------------------------------------
 // Numbers stay doubles as Python gives them (NaN and infinities too, so that the scene
 // reader, not this converter, names the field); NumPy scalars and arrays are accepted.
-nlohmann::json to_json(const py::handle& o, const std::string& path, const std::string& source) {
+// Nesting deeper than any scene needs is refused (a Python error, not a C++ stack overflow).
+constexpr int kMaxDepth = 64;
+
+nlohmann::json to_json(const py::handle& o, const std::string& path, const std::string& source, int depth = 0) {
+    if (depth > kMaxDepth)
+        throw InputError(source + ": " + path + ": nested more than " + std::to_string(kMaxDepth) + " levels deep");
     if (o.is_none()) return nullptr;
     if (PyBool_Check(o.ptr())) return o.cast<bool>();
     if (PyLong_Check(o.ptr())) {
@@ -64,19 +69,22 @@ nlohmann::json to_json(const py::handle& o, const std::string& path, const std::
                 throw InputError(source + ": " + (path.empty() ? "/" : path) + ": keys must be strings, not " +
                                  std::string(py::str(py::repr(kv.first))));
             const std::string key = kv.first.cast<std::string>();
-            j[key] = to_json(kv.second, path + "/" + key, source);
+            j[key] = to_json(kv.second, path + "/" + key, source, depth + 1);
         }
         return j;
     }
     if (PyList_Check(o.ptr()) || PyTuple_Check(o.ptr())) {
         nlohmann::json j = nlohmann::json::array();
         size_t k = 0;
-        for (const auto& v : py::reinterpret_borrow<py::sequence>(o)) j.push_back(to_json(v, path + "/" + std::to_string(k++), source));
+        for (const auto& v : py::reinterpret_borrow<py::sequence>(o))
+            j.push_back(to_json(v, path + "/" + std::to_string(k++), source, depth + 1));
         return j;
     }
-    if (py::isinstance<py::array>(o) || py::hasattr(o, "tolist")) return to_json(o.attr("tolist")(), path, source);
-    if (PyIndex_Check(o.ptr())) return to_json(py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr())), path, source);
-    if (PyNumber_Check(o.ptr())) return to_json(py::reinterpret_steal<py::object>(PyNumber_Float(o.ptr())), path, source);
+    if (py::isinstance<py::array>(o) || py::hasattr(o, "tolist")) return to_json(o.attr("tolist")(), path, source, depth + 1);
+    if (PyIndex_Check(o.ptr()))
+        return to_json(py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr())), path, source, depth + 1);
+    if (PyNumber_Check(o.ptr()))
+        return to_json(py::reinterpret_steal<py::object>(PyNumber_Float(o.ptr())), path, source, depth + 1);
     throw InputError(source + ": " + (path.empty() ? "/" : path) + ": cannot be written in JSON (a " +
                      std::string(py::str(o.get_type().attr("__name__"))) + ")");
 }

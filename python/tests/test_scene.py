@@ -67,3 +67,24 @@ def test_the_example_scenes_load(source_dir):
     assert (s.width, s.height) == (640, 480)
     assert s.spectral and s.polarisation == "natural"
     assert "diamond" in s.objects
+
+
+def test_a_self_referencing_or_absurdly_nested_dict_raises_instead_of_crashing():
+    d = sphere_scene()
+    d["description"] = d  # a cycle
+    with pytest.raises(refract.InputError, match="nested more than 64 levels"):
+        refract.scene(d)
+    deep = []
+    for _ in range(10000):
+        deep = [deep]
+    d = sphere_scene()
+    d["description"] = deep
+    with pytest.raises(refract.InputError, match="/description/0/0"):
+        refract.scene(d)
+
+
+def test_a_value_json_cannot_hold_is_named():
+    d = sphere_scene()
+    d["objects"][0]["radius"] = object()
+    with pytest.raises(refract.InputError, match="/objects/0/radius: cannot be written in JSON"):
+        refract.scene(d)
