@@ -28,14 +28,16 @@ from ._refract import (  # noqa: F401  (the public API)
     optics,
     optics_bench,
     polarisation_sphere,
+    read_image,
     run_experiment,
+    write_image,
 )
 
 __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
     "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
-    "materials", "n", "optics", "optics_bench", "polarisation_sphere", "render", "run_experiment", "scene",
-    "trace", "trace_pixel",
+    "materials", "n", "optics", "optics_bench", "polarisation_sphere", "read_image", "render", "run_experiment", "scene",
+    "trace", "trace_pixel", "write_image",
 ]
 __version__ = "0.1"
 for _c in (Dispersion, FresnelTerms, InputError, Scene):

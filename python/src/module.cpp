@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
 #include "core/render.h"
 #include "core/scene_json.h"
 #include "core/trace_record.h"
@@ -352,6 +353,32 @@ PYBIND11_MODULE(_refract, m) {
               return trace_result(rec);
           },
           py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none());
+
+    m.def("write_image",
+          [](const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& rgb,
+             bool linear16) {
+              if (rgb.ndim() != 3 || rgb.shape(2) != 3 || rgb.shape(0) < 1 || rgb.shape(1) < 1)
+                  throw InputError(path + ": write_image needs an array of shape (height, width, 3)");
+              Image img(static_cast<int>(rgb.shape(1)), static_cast<int>(rgb.shape(0)));
+              std::copy(rgb.data(), rgb.data() + rgb.size(), img.rgb.begin());
+              py::gil_scoped_release nogil;
+              write_image(path, img, WriteOptions{linear16});
+          },
+          py::arg("path"), py::arg("rgb"), py::arg("linear16") = false,
+          "Writes linear RGB (height, width, 3) as `refract render` does: .exr/.hdr/.tif linear, .png/.jpg sRGB "
+          "(16-bit linear PNG with linear16); atomically.");
+    m.def("read_image",
+          [](const std::string& path) {
+              Image img;
+              {
+                  py::gil_scoped_release nogil;
+                  img = read_image(path);
+              }
+              py::array_t<double> a({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t(3)});
+              std::copy(img.rgb.begin(), img.rgb.end(), a.mutable_data());
+              return a;
+          },
+          py::arg("path"), "Reads an image as stored (linear for EXR), shape (height, width, 3).");
 
     bind_optics(m);
     bind_gem(m);

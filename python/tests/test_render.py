@@ -88,3 +88,16 @@ def test_ctrl_c_interrupts_a_long_render_within_a_second():
     elapsed = time.perf_counter() - t0
     timer.join()
     assert elapsed < 1.5
+
+
+def test_an_exr_written_from_a_render_reads_back_bit_for_bit_in_single_precision(tmp_path):
+    r = refract.render(sphere_scene())
+    path = str(tmp_path / "ball.exr")
+    refract.write_image(path, r.rgb)
+    back = refract.read_image(path)
+    assert back.shape == r.rgb.shape
+    assert np.array_equal(back, r.rgb.astype(np.float32).astype(np.float64))
+    with pytest.raises(ValueError, match="shape"):
+        refract.write_image(str(tmp_path / "x.exr"), np.zeros((4, 4)))
+    with pytest.raises(ValueError, match="x.bogus"):
+        refract.write_image(str(tmp_path / "x.bogus"), r.rgb)
