@@ -261,6 +261,43 @@ void bind_experiments(py::module_& m) {
     }, py::arg("quick") = true, py::arg("threads") = 0,
        "gem-geometry measured into a dict: per preset the proportions, facet counts, plane-set vs mesh timing, "
        "the rendered diamond (rgb) and its scene.");
+    m.def("rtiow_dielectric", [](bool quick, int threads) {
+        ex::rtiow::Result r;
+        {
+            py::gil_scoped_release nogil;
+            r = ex::rtiow::compute(ex::ExperimentOptions{"", threads, quick});
+        }
+        const py::object loads = py::module_::import("json").attr("loads");
+        auto image = [](const Image& img) {
+            py::array_t<double> a({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t(3)});
+            std::copy(img.rgb.begin(), img.rgb.end(), a.mutable_data());
+            return a;
+        };
+        py::list stages, schlick, convergence;
+        for (const auto& s : r.stages)
+            stages.append(py::dict(py::arg("id") = s.stage.id, py::arg("caption") = s.stage.caption,
+                                   py::arg("scene") = loads(s.scene.dump()), py::arg("rgb") = image(s.image),
+                                   py::arg("tir_nodes") = s.tir_nodes));
+        for (const auto& c : r.schlick) {
+            py::array_t<double> rows({static_cast<py::ssize_t>(c.rows.size()), py::ssize_t(3)});
+            auto R = rows.mutable_unchecked<2>();
+            for (size_t k = 0; k < c.rows.size(); ++k) {
+                R(static_cast<py::ssize_t>(k), 0) = c.rows[k].angle_deg;
+                R(static_cast<py::ssize_t>(k), 1) = c.rows[k].fresnel;
+                R(static_cast<py::ssize_t>(k), 2) = c.rows[k].schlick;
+            }
+            schlick.append(py::dict(py::arg("name") = c.name, py::arg("eta") = c.eta, py::arg("use_cos_t") = c.use_cos_t,
+                                    py::arg("rows") = rows, py::arg("max_error") = c.max_error,
+                                    py::arg("max_error_at") = c.max_error_at, py::arg("mean_error") = c.mean_error));
+        }
+        for (const auto& row : r.convergence.rows)
+            convergence.append(py::dict(py::arg("spp") = row.spp, py::arg("rmse") = row.rmse, py::arg("seconds") = row.seconds));
+        return py::dict(py::arg("quick") = r.quick, py::arg("stages") = stages, py::arg("schlick") = schlick,
+                        py::arg("convergence") = convergence, py::arg("slope") = r.convergence.fit.slope,
+                        py::arg("intercept") = r.convergence.fit.intercept);
+    }, py::arg("quick") = true, py::arg("threads") = 0,
+       "rtiow-dielectric measured into a dict: the stages (images, TIR node counts), Schlick against Fresnel per "
+       "case (rows: angle, fresnel, schlick), and the stochastic integrator's RMSE per spp with the log-log slope.");
     m.def("gem_proportions", [](const std::string& preset) {
         const Gem gem = build_brilliant(brilliant_preset(preset));
         py::list l;

@@ -54,3 +54,13 @@ def test_gem_geometry_returns_its_data_and_renders_without_writing_files():
         assert p["rgb"].ndim == 3 and p["rgb"].shape[2] == 3 and p["rgb"].max() > 0
         assert p["facet_counts"]["table"] == 1
         assert p["scene"]["objects"]
+
+
+def test_rtiow_returns_schlick_errors_and_a_convergence_slope_near_minus_one_half():
+    r = refract.rtiow_dielectric(quick=True, threads=2)
+    assert [s["tir_nodes"] > 0 for s in r["stages"]] == [False, False, False, True]  # only the hollow sphere
+    n15 = r["schlick"][0]
+    assert n15["name"] == "n=1.5" and n15["rows"].shape == (361, 3)
+    assert n15["rows"][0, 1] == pytest.approx(0.04, rel=1e-12)  # Fresnel at normal incidence
+    assert n15["max_error"] == pytest.approx(0.0357, abs=5e-5) and n15["max_error_at"] == 85
+    assert -0.7 < r["slope"] < -0.3
