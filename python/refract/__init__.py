@@ -27,6 +27,7 @@ from ._refract import (  # noqa: F401  (the public API)
     materials,
     optics,
     optics_bench,
+    polarisation,
     polarisation_sphere,
     read_image,
     rtiow_dielectric,
@@ -37,7 +38,7 @@ from ._refract import (  # noqa: F401  (the public API)
 __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
     "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
-    "materials", "n", "optics", "optics_bench", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
+    "materials", "n", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
     "trace", "trace_pixel", "write_image",
 ]
 __version__ = "0.1"

@@ -220,6 +220,59 @@ void bind_experiments(py::module_& m) {
         return optics_bench_dict(r);
     }, py::arg("quick") = true, py::arg("threads") = 0,
        "optics-bench measured into a dict: drop classes and bins, rainbow, prism and slab rows with closed forms.");
+    m.def("polarisation", [](bool quick, int threads) {
+        ex::polarisation::Result r;
+        {
+            py::gil_scoped_release nogil;
+            r = ex::polarisation::compute(ex::ExperimentOptions{"", threads, quick});
+        }
+        auto image = [](const Image& img) {
+            py::array_t<double> a({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t(3)});
+            std::copy(img.rgb.begin(), img.rgb.end(), a.mutable_data());
+            return a;
+        };
+        const auto& classes = ex::polarisation::path_classes();
+        py::list errors, rainbows;
+        for (const auto& e : r.sphere.errors)
+            errors.append(py::dict(py::arg("n") = e.n, py::arg("path") = classes[static_cast<size_t>(e.cls)].name,
+                                   py::arg("points") = e.points, py::arg("max_dop_error") = e.max_dop_error,
+                                   py::arg("max_signed_error") = e.max_signed_error, py::arg("max_s23") = e.max_s23));
+        for (const auto& b : r.sphere.rainbows)
+            rainbows.append(py::dict(py::arg("n") = b.n, py::arg("theta_deg") = b.theta_deg,
+                                     py::arg("deviation_deg") = b.deviation_deg, py::arg("dop") = b.dop,
+                                     py::arg("dop_closed") = b.dop_closed));
+        auto comparison = [&](const ex::polarisation::Comparison& c) {
+            py::list depth;
+            for (const auto& d : c.depth)
+                depth.append(py::dict(py::arg("depth") = d.depth, py::arg("natural") = d.natural, py::arg("exact") = d.exact));
+            const py::ssize_t W = c.width, H = c.height;
+            py::array_t<double> dolp({H, W});
+            std::copy(c.exact_polarisation.dolp.begin(), c.exact_polarisation.dolp.end(), dolp.mutable_data());
+            return py::dict(py::arg("title") = c.title, py::arg("natural") = image(c.natural), py::arg("exact") = image(c.exact),
+                            py::arg("dolp") = dolp, py::arg("rmse") = c.rmse, py::arg("max_abs") = c.max_abs,
+                            py::arg("delta_e_mean") = c.de_mean, py::arg("delta_e_p95") = c.de_p95,
+                            py::arg("delta_e_max") = c.de_max, py::arg("light_natural") = c.light_natural,
+                            py::arg("light_exact") = c.light_exact, py::arg("depth") = depth,
+                            py::arg("seconds_natural") = c.seconds_natural, py::arg("seconds_exact") = c.seconds_exact);
+        };
+        const auto& a = r.analyser;
+        py::list analyser_images;
+        for (const auto& img : a.images) analyser_images.append(image(img));
+        return py::dict(
+            py::arg("quick") = r.quick,
+            py::arg("sphere") = py::dict(py::arg("points") = sphere_points_list(r.sphere.points), py::arg("errors") = errors,
+                                         py::arg("rainbows") = rainbows, py::arg("max_dop_error") = r.sphere.max_dop_error),
+            py::arg("diamond") = comparison(r.diamond), py::arg("glass") = comparison(r.glass),
+            py::arg("analyser") = py::dict(
+                py::arg("angles") = std::vector<double>(a.angles.begin(), a.angles.end()), py::arg("images") = analyser_images,
+                py::arg("light") = std::vector<double>(a.light.begin(), a.light.end()),
+                py::arg("max_dev_0_90") = a.max_dev_0_90, py::arg("max_dev_45_135") = a.max_dev_45_135,
+                py::arg("dolp_mean_object") = a.dolp_mean_object, py::arg("dolp_max_object") = a.dolp_max_object),
+            py::arg("seconds") = r.seconds_total);
+    }, py::arg("quick") = true, py::arg("threads") = 0,
+       "polarisation measured into a dict: the sphere's degree of polarisation per path class against the closed "
+       "forms, the 1998 diamond and a glass sphere in natural and exact polarisation (images, DoLP, ΔE, light per "
+       "depth), the diamond through an analyser at 0/45/90/135°.");
     m.def("polarisation_sphere", [](double n, const std::vector<double>& angles_deg) {
         std::vector<ex::polarisation::SpherePoint> pts;
         {

@@ -64,3 +64,16 @@ def test_rtiow_returns_schlick_errors_and_a_convergence_slope_near_minus_one_hal
     assert n15["rows"][0, 1] == pytest.approx(0.04, rel=1e-12)  # Fresnel at normal incidence
     assert n15["max_error"] == pytest.approx(0.0357, abs=5e-5) and n15["max_error_at"] == 85
     assert -0.7 < r["slope"] < -0.3
+
+
+def test_polarisation_returns_the_analyser_malus_sums_and_the_sphere_closed_forms():
+    r = refract.polarisation(quick=True, threads=2)
+    assert r["sphere"]["max_dop_error"] < 1e-9
+    d = r["diamond"]
+    assert d["natural"].shape == d["exact"].shape and d["dolp"].shape == d["natural"].shape[:2]
+    assert d["light_natural"] > 0 and d["light_exact"] > 0
+    a = r["analyser"]
+    assert a["angles"] == [0, 45, 90, 135] and len(a["images"]) == 4
+    # I(0°) + I(90°) = I(45°) + I(135°) = S0: the light through crossed analysers adds up
+    # (to the cie-rgb pipeline's clipping of negative channels, experiments/polarisation.h)
+    assert a["light"][0] + a["light"][2] == pytest.approx(a["light"][1] + a["light"][3], rel=1e-5)
