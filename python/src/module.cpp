@@ -1,7 +1,7 @@
 // refract._refract: the native part of the Python module `refract` (python/refract/ is the
 // package around it). Scenes, rendering and ray trees here; the optics laws and materials
-// in optics.cpp, the brilliant cut and the experiments in gem.cpp. Every law and check is
-// core's: these functions only convert between Python and C++.
+// in optics.cpp, the brilliant cut in gem.cpp, the experiments in experiments.cpp. Every
+// law and check is core's: these functions only convert between Python and C++.
 #include <pybind11/stl.h>
 
 #include <chrono>
