@@ -33,13 +33,14 @@ from ._refract import (  # noqa: F401  (the public API)
     rtiow_dielectric,
     run_experiment,
     write_image,
+    yasuda1984,
 )
 
 __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
     "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
     "materials", "n", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
-    "trace", "trace_pixel", "write_image",
+    "trace", "trace_pixel", "write_image", "yasuda1984",
 ]
 __version__ = "0.1"
 for _c in (Dispersion, FresnelTerms, InputError, Scene):

@@ -219,6 +219,64 @@ void bind_experiments(py::module_& m) {
     }, py::arg("quick") = true, py::arg("threads") = 0,
        "rtiow-dielectric measured into a dict: the stages (images, TIR node counts), Schlick against Fresnel per "
        "case (rows: angle, fresnel, schlick), and the stochastic integrator's RMSE per spp with the log-log slope.");
+    m.def("yasuda1984", [](bool quick, int threads) {
+        ex::yasuda1984::Result r;
+        {
+            py::gil_scoped_release nogil;
+            r = ex::yasuda1984::compute(ex::ExperimentOptions{"", threads, quick});
+        }
+        const py::object loads = py::module_::import("json").attr("loads");
+        py::array_t<double> fig4({static_cast<py::ssize_t>(r.fig4.size()), py::ssize_t(4)});
+        auto F4 = fig4.mutable_unchecked<2>();
+        for (size_t k = 0; k < r.fig4.size(); ++k) {
+            const auto i = static_cast<py::ssize_t>(k);
+            F4(i, 0) = r.fig4[k].angle_deg, F4(i, 1) = r.fig4[k].Rs, F4(i, 2) = r.fig4[k].Rp, F4(i, 3) = r.fig4[k].R;
+        }
+        py::array_t<double> fig7({static_cast<py::ssize_t>(r.fig7.size()), py::ssize_t(3)});
+        auto F7 = fig7.mutable_unchecked<2>();
+        for (size_t k = 0; k < r.fig7.size(); ++k) {
+            const auto i = static_cast<py::ssize_t>(k);
+            F7(i, 0) = r.fig7[k].n, F7(i, 1) = r.fig7[k].angle_deg, F7(i, 2) = r.fig7[k].T;
+        }
+        py::list peaks, fig8, fig9, costs, memory;
+        for (const auto& p : r.peaks)
+            peaks.append(py::dict(py::arg("n") = p.n, py::arg("angle_deg") = p.angle_deg, py::arg("T") = p.T,
+                                  py::arg("T0") = p.T0, py::arg("interior") = p.interior));
+        auto panels = [&](const std::vector<ex::yasuda1984::RenderedPanel>& in, py::list& out) {
+            for (const auto& p : in) {
+                py::array_t<double> rgb({static_cast<py::ssize_t>(p.image.height), static_cast<py::ssize_t>(p.image.width),
+                                         py::ssize_t(3)});
+                std::copy(p.image.rgb.begin(), p.image.rgb.end(), rgb.mutable_data());
+                out.append(py::dict(py::arg("file") = p.file, py::arg("caption") = p.caption, py::arg("value") = p.value,
+                                    py::arg("scene") = loads(p.scene.dump()), py::arg("rgb") = rgb,
+                                    py::arg("seconds") = p.stats.seconds, py::arg("segments") = p.stats.segments,
+                                    py::arg("tree_nodes") = p.stats.tree_nodes, py::arg("peak_list") = p.stats.peak_list));
+            }
+        };
+        panels(r.fig8, fig8);
+        panels(r.fig9, fig9);
+        const auto& c = r.cost;
+        for (const auto& n : c.node_costs)
+            costs.append(py::dict(py::arg("formulation") = n.formulation, py::arg("model") = n.model,
+                                  py::arg("mul") = n.ops.mul, py::arg("div") = n.ops.div, py::arg("add") = n.ops.add,
+                                  py::arg("sqrt") = n.ops.sqrt, py::arg("cmp") = n.ops.cmp));
+        for (const auto& row : c.memory)
+            memory.append(py::dict(py::arg("max_depth") = row.max_depth, py::arg("whitted_peak_nodes") = row.whitted.peak_list,
+                                   py::arg("list_peak_entries_threshold0") = row.list_threshold0.peak_list,
+                                   py::arg("list_peak_entries_threshold_1_255") = row.list_threshold_1_255.peak_list));
+        return py::dict(
+            py::arg("quick") = r.quick, py::arg("fig4") = fig4, py::arg("fig7") = fig7, py::arg("peaks") = peaks,
+            py::arg("peak_onset") = r.peak_onset, py::arg("peak_beyond_70") = r.peak_beyond_70, py::arg("fig8") = fig8,
+            py::arg("fig9") = fig9,
+            py::arg("cost") = py::dict(
+                py::arg("node_costs") = costs, py::arg("sphere_test_muldiv") = c.sphere_test.muldiv(),
+                py::arg("plane_test_muldiv") = c.plane_test.muldiv(), py::arg("ns_constant") = c.ns_constant,
+                py::arg("ns_fresnel") = c.ns_fresnel, py::arg("ns_schlick") = c.ns_schlick,
+                py::arg("ns_search") = c.ns_search, py::arg("render_constant") = c.render_best[0],
+                py::arg("render_fresnel") = c.render_best[1], py::arg("memory") = memory));
+    }, py::arg("quick") = true, py::arg("threads") = 0,
+       "yasuda1984 measured into a dict: Fig. 4 (angle, Rs, Rp, R) and Fig. 7 (n, angle, T) as arrays, the "
+       "transmissivity peaks, the Fig. 8 and 9 panels (images, counters), the §5 cost and memory measurements.");
     m.def("gem_proportions", [](const std::string& preset) {
         const Gem gem = build_brilliant(brilliant_preset(preset));
         py::list l;

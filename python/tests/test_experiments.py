@@ -77,3 +77,14 @@ def test_polarisation_returns_the_analyser_malus_sums_and_the_sphere_closed_form
     # I(0°) + I(90°) = I(45°) + I(135°) = S0: the light through crossed analysers adds up
     # (to the cie-rgb pipeline's clipping of negative channels, experiments/polarisation.h)
     assert a["light"][0] + a["light"][2] == pytest.approx(a["light"][1] + a["light"][3], rel=1e-5)
+
+
+def test_yasuda1984_returns_fig4_fig7_and_the_40_percent_cost_of_fresnel():
+    r = refract.yasuda1984(quick=True, threads=2)
+    fig4 = r["fig4"]
+    assert fig4.shape == (181, 4) and fig4[0, 3] == pytest.approx(0.04, rel=1e-12)
+    assert r["peak_onset"] == pytest.approx(2 + 3 ** 0.5, abs=1e-5)  # n > 2 + √3: an interior peak
+    assert len(r["fig8"]) == 10 and len(r["fig9"]) == 6
+    costs = {(c["formulation"], c["model"]): c["mul"] + c["div"] for c in r["cost"]["node_costs"]}
+    increase = costs[("yasuda1984", "fresnel")] / costs[("yasuda1984", "constant")] - 1
+    assert 0.3 < increase < 0.5  # the paper: "about 40 %"
