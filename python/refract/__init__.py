@@ -24,6 +24,7 @@ from ._refract import (  # noqa: F401  (the public API)
     gem_proportions,
     load_scene,
     material,
+    ohtsuka1998,
     materials,
     optics,
     optics_bench,
@@ -39,7 +40,7 @@ from ._refract import (  # noqa: F401  (the public API)
 __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
     "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
-    "materials", "n", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
+    "materials", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
     "trace", "trace_pixel", "write_image", "yasuda1984",
 ]
 __version__ = "0.1"

@@ -277,6 +277,66 @@ void bind_experiments(py::module_& m) {
     }, py::arg("quick") = true, py::arg("threads") = 0,
        "yasuda1984 measured into a dict: Fig. 4 (angle, Rs, Rp, R) and Fig. 7 (n, angle, T) as arrays, the "
        "transmissivity peaks, the Fig. 8 and 9 panels (images, counters), the §5 cost and memory measurements.");
+    m.def("ohtsuka1998", [](bool quick, int threads) {
+        namespace oh = ex::ohtsuka1998;
+        oh::Result r;
+        {
+            py::gil_scoped_release nogil;
+            r = oh::compute(ex::ExperimentOptions{"", threads, quick});
+        }
+        auto image = [](const Image& img) {
+            py::array_t<double> a({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t(3)});
+            std::copy(img.rgb.begin(), img.rgb.end(), a.mutable_data());
+            return a;
+        };
+        auto diff = [](const oh::Diff& d) {
+            return py::dict(py::arg("rmse") = d.rmse, py::arg("max") = d.max, py::arg("delta_e_mean") = d.de_mean,
+                            py::arg("delta_e_max") = d.de_max);
+        };
+        py::list steps, thresholds, peaks, lost, by_photons, by_element;
+        for (const auto& x : r.steps)
+            steps.append(py::dict(py::arg("step_nm") = x.step_nm, py::arg("against_1nm") = diff(x.against_1nm),
+                                  py::arg("light_s") = x.light_s, py::arg("eye_s") = x.eye_s));
+        auto shortcut_rows = [&](const std::vector<oh::ShortcutRow>& in, py::list& out) {
+            for (const auto& x : in)
+                out.append(py::dict(py::arg("label") = x.label, py::arg("threshold") = x.threshold,
+                                    py::arg("wavelengths") = py::make_tuple(x.wavelengths[0], x.wavelengths[1], x.wavelengths[2]),
+                                    py::arg("taken_fraction") = x.taken_fraction, py::arg("speedup_time") = x.speedup_time,
+                                    py::arg("speedup_segments") = x.speedup_segments,
+                                    py::arg("against_full") = diff(x.against_full)));
+        };
+        shortcut_rows(r.thresholds, thresholds);
+        shortcut_rows(r.peaks, peaks);
+        for (const auto& x : r.lost) {
+            const double n = static_cast<double>(x.stats.primary_rays);
+            lost.append(py::dict(py::arg("paper_limits") = x.paper_limits, py::arg("max_depth") = x.max_depth,
+                                 py::arg("threshold") = x.threshold, py::arg("lost_depth") = x.stats.lost_depth / n,
+                                 py::arg("lost_limits") = x.stats.lost_limits / n,
+                                 py::arg("lost_threshold") = x.stats.lost_threshold / n,
+                                 py::arg("worst_pixel") = x.worst_pixel, py::arg("rmse_vs_deepest") = x.rmse_vs_deepest));
+        }
+        auto map_rows = [](const std::vector<oh::MapStudyRow>& in, py::list& out) {
+            for (const auto& x : in)
+                out.append(py::dict(py::arg("element_size") = x.element_size, py::arg("elements") = x.elements,
+                                    py::arg("photons") = x.photons, py::arg("filter") = filter_name(x.filter),
+                                    py::arg("deposits_per_element") = x.deposits_per_element, py::arg("error") = x.e.error,
+                                    py::arg("noise") = x.e.noise, py::arg("bias") = x.e.bias));
+        };
+        map_rows(r.maps.by_photons, by_photons);
+        map_rows(r.maps.by_element, by_element);
+        const auto& fs = r.fast.stats;
+        return py::dict(
+            py::arg("quick") = r.quick, py::arg("full") = image(r.full.image), py::arg("shortcut") = image(r.fast.image),
+            py::arg("box") = image(r.box_image), py::arg("first") = image(r.first_image), py::arg("light_s") = r.light_s,
+            py::arg("eye_s") = r.eye_s, py::arg("eye_shortcut_s") = fs.seconds,
+            py::arg("shortcut_taken") = fs.shortcut_taken, py::arg("shortcut_tests") = fs.shortcut_tests,
+            py::arg("map_elements") = r.map_elements, py::arg("map_photons") = r.map_photons,
+            py::arg("map_deposits") = r.map_deposits, py::arg("shortcut_diff") = diff(r.shortcut_diff),
+            py::arg("steps") = steps, py::arg("thresholds") = thresholds, py::arg("peaks") = peaks, py::arg("lost") = lost,
+            py::arg("map_by_photons") = by_photons, py::arg("map_by_element") = by_element, py::arg("seconds") = r.seconds);
+    }, py::arg("quick") = true, py::arg("threads") = 0,
+       "ohtsuka1998 measured into a dict: the diamond with the full split and the shortcut (images, times, difference), "
+       "the wavelength-step, floor-map, shortcut-threshold and dropped-light studies.");
     m.def("gem_proportions", [](const std::string& preset) {
         const Gem gem = build_brilliant(brilliant_preset(preset));
         py::list l;

@@ -88,3 +88,13 @@ def test_yasuda1984_returns_fig4_fig7_and_the_40_percent_cost_of_fresnel():
     costs = {(c["formulation"], c["model"]): c["mul"] + c["div"] for c in r["cost"]["node_costs"]}
     increase = costs[("yasuda1984", "fresnel")] / costs[("yasuda1984", "constant")] - 1
     assert 0.3 < increase < 0.5  # the paper: "about 40 %"
+
+
+def test_ohtsuka1998_returns_the_diamond_and_the_shortcuts_speed_and_error():
+    r = refract.ohtsuka1998(quick=True, threads=2)
+    assert r["full"].shape == r["shortcut"].shape == (90, 120, 3)
+    assert 0 < r["shortcut_taken"] <= r["shortcut_tests"]
+    assert r["shortcut_diff"]["rmse"] < 0.05
+    steps = {s["step_nm"]: s["against_1nm"]["rmse"] for s in r["steps"]}
+    assert steps[1.0] == 0 and steps[5.0] < steps[50.0]  # coarser sampling, larger error
+    assert [x["label"] for x in r["peaks"]] == ["paper", "measured"]
