@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "core/image.h"
 #include "geometry/error.h"
+#include "geometry/format.h"
 #include "validation/compare.h"
 #include "validation/files.h"
 #include "validation/measure.h"
@@ -23,11 +24,7 @@ struct MeasureArgs {
     int bins = 32;
 };
 
-std::string csv_number(double v) {
-    std::ostringstream s;
-    s << std::setprecision(10) << v;
-    return s.str();
-}
+std::string csv_number(double v) { return refract::format_significant(v, 10); }
 
 // The measurement the options ask for, as CSV text.
 std::string measure_csv(const MeasureArgs& a, const refract::Image& img) {

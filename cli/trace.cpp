@@ -33,6 +33,7 @@ nlohmann::json to_json(const refract::TraceRecord& r, const std::string& scene) 
         if (s.hit) {
             j["length"] = s.length;
             j["point"] = vec(s.point);
+            j["normal"] = vec(s.normal);
             j["object"] = s.object;
             j["facet"] = s.facet;
             if (!s.facet_label.empty()) j["facet_label"] = s.facet_label;

@@ -245,6 +245,7 @@ Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
     validate(scene);
     check_channels(scene, opt);
+    const auto cancelled = [&opt] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
     const auto t0 = std::chrono::steady_clock::now();
     const int threads = worker_threads(opt.threads);
     check_memory(estimate_render_memory(scene, opt, threads), opt.max_memory,
@@ -290,6 +291,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     auto body = [&](const tbb::blocked_range2d<int>& r) {
         for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty)
             for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
+                if (cancelled()) return;
                 RenderStats& tile = tile_stats[static_cast<size_t>(ty) * tiles_x + tx];
                 for (int j = ty * kTile; j < std::min(H, (ty + 1) * kTile); ++j)
                     for (int i = tx * kTile; i < std::min(W, (tx + 1) * kTile); ++i) {
@@ -333,8 +335,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 }
             }
     };
+    if (cancelled()) throw RenderCancelled();
     tbb::task_arena arena(threads);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), body); });
+    if (cancelled()) throw RenderCancelled();
     for (const auto& st : tile_stats) result.stats.merge(st);
     result.stats.merge(light_stats);
     result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

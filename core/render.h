@@ -1,8 +1,10 @@
 #pragma once
 // Rendering a scene: tiles over oneTBB, deterministic whatever the thread count.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,14 @@ struct RenderOptions {
     // Memory budget in bytes (0: default_memory_budget(), core/memory.h): the render's
     // estimate is checked against it before anything large is allocated.
     std::uint64_t max_memory = 0;
+    // Cancellation (the Python module's Ctrl-C): when set and it becomes true, the eye
+    // pass stops at the next tile and render() throws RenderCancelled.
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+// Thrown by render() when RenderOptions::cancel became true.
+struct RenderCancelled : std::runtime_error {
+    RenderCancelled() : std::runtime_error("render cancelled") {}
 };
 
 // Exact polarisation's images (render.polarisation "exact"): per pixel the Stokes vectors

@@ -41,6 +41,7 @@ public:
         s.hit = true;
         s.length = h.hit.t;
         s.point = h.hit.point;
+        s.normal = h.normal;
         s.object = h.object->name;
         s.facet = h.hit.facet;
         if (const auto* c = std::get_if<ConvexPolyhedron>(&h.object->shape))

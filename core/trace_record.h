@@ -23,6 +23,7 @@ struct TraceSegment {
     bool hit = false;
     double length = 0;  // to the hit
     Vec3 point{0, 0, 0};
+    Vec3 normal{0, 0, 0};  // unit surface normal at the hit, on the incident side
     std::string object;
     int facet = -1;            // facet or triangle index, −1 for smooth shapes
     std::string facet_label;   // the polyhedron's facet name, when it has one

@@ -3,6 +3,7 @@
 #include "experiments/experiment.h"
 #include "experiments/gem_geometry.h"
 #include "experiments/ohtsuka1998.h"
+#include "experiments/ohtsuka1998_result.h"
 #include "experiments/optics_bench.h"
 #include "experiments/polarisation.h"
 #include "experiments/rtiow.h"

@@ -174,10 +174,32 @@ std::string md_num(double v) { return fmt(v, 10); }
 
 }  // namespace
 
-void run(const ExperimentOptions& opt) {
-    const std::string dir = opt.out_dir;
+Result compute(const ExperimentOptions& opt) {
+    Result r;
+    r.quick = opt.quick;
+    for (const auto& p : brilliant_preset_names()) {
+        PresetResult pr;
+        pr.preset = p;
+        pr.gem = build_brilliant(brilliant_preset(p));
+        pr.proportions = proportion_rows(p, pr.gem);
+        for (const auto& row : pr.proportions) r.worst = std::max(r.worst, std::abs(row.measured - row.expected));
+        pr.facet_counts = facet_counts(pr.gem);
+        r.presets.push_back(std::move(pr));
+    }
+    for (auto& pr : r.presets) pr.timing = time_intersections(pr.preset, pr.gem, opt.quick ? 4000 : 200000);
+    for (auto& pr : r.presets) {
+        pr.scene = render_scene(pr.preset, opt.quick);
+        RenderOptions ro;
+        ro.threads = opt.threads;
+        pr.render = render(scene_from_json(pr.scene, "gem_render_" + pr.preset + ".json"), ro);
+    }
+    return r;
+}
+
+void write(const Result& r, const std::string& dir) {
     ensure_dir(dir);
-    const std::vector<std::string> presets = brilliant_preset_names();
+    std::vector<std::string> presets;
+    for (const auto& pr : r.presets) presets.push_back(pr.preset);
     std::ostringstream summary;
     summary << "# gem-geometry: the round brilliant, exactly\n\n"
             << "Presets built with CGAL's exact kernel (geometry/gem/brilliant.h, docs/gems.md); every figure "
@@ -190,30 +212,26 @@ void run(const ExperimentOptions& opt) {
     md << "| preset | quantity | unit | source | expected | measured | abs diff |\n|---|---|---|---|---:|---:|---:|\n";
     Csv facets;
     facets.header = {"preset", "kind", "count"};
-    std::vector<Gem> gems;
-    double worst = 0;
-    for (const auto& p : presets) {
-        gems.push_back(build_brilliant(brilliant_preset(p)));
-        for (const auto& r : proportion_rows(p, gems.back())) {
-            const double d = std::abs(r.measured - r.expected);
-            worst = std::max(worst, d);
-            prop.add({r.preset, r.quantity, r.unit, r.source, fmt(r.expected), fmt(r.measured), fmt(d)});
-            md << "| " << r.preset << " | " << r.quantity << " | " << r.unit << " | " << r.source << " | "
-               << md_num(r.expected) << " | " << md_num(r.measured) << " | " << fmt(d, 2) << " |\n";
+    for (const auto& pr : r.presets) {
+        for (const auto& row : pr.proportions) {
+            const double d = std::abs(row.measured - row.expected);
+            prop.add({row.preset, row.quantity, row.unit, row.source, fmt(row.expected), fmt(row.measured), fmt(d)});
+            md << "| " << row.preset << " | " << row.quantity << " | " << row.unit << " | " << row.source << " | "
+               << md_num(row.expected) << " | " << md_num(row.measured) << " | " << fmt(d, 2) << " |\n";
         }
-        for (const auto& [kind, count] : facet_counts(gems.back())) facets.add({p, kind, std::to_string(count)});
+        for (const auto& [kind, count] : pr.facet_counts) facets.add({pr.preset, kind, std::to_string(count)});
     }
     write_csv(dir + "/gem_proportions.csv", prop);
     write_text_atomic(dir + "/gem_proportions.md", md.str());
     write_csv(dir + "/gem_facets.csv", facets);
     summary << "## Proportions: requested / closed form against measured\n\n"
             << "Percent of the girdle diameter, degrees from the girdle plane (`gem_proportions.csv`, "
-            << "`gem_proportions.md`). Largest difference: " << fmt(worst, 3) << ".\n\n"
+            << "`gem_proportions.md`). Largest difference: " << fmt(r.worst, 3) << ".\n\n"
             << md.str() << "\n";
 
     // Line drawings.
-    for (size_t i = 0; i < presets.size(); ++i)
-        write_text_atomic(dir + "/gem_outline_" + presets[i] + ".csv", outline_text(gems[i]));
+    for (const auto& pr : r.presets)
+        write_text_atomic(dir + "/gem_outline_" + pr.preset + ".csv", outline_text(pr.gem));
     FigureSize size;
     size.width_px = 1200;
     size.height_px = 420 * static_cast<int>(presets.size()) + 40;
@@ -233,8 +251,8 @@ void run(const ExperimentOptions& opt) {
             << "one thread (`gem_intersection.csv`). Timings are of this machine and run.\n\n"
             << "| preset | planes | triangles | rays | hits | agree | plane set ns/ray | mesh ns/ray | mesh / plane |\n"
             << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (size_t i = 0; i < presets.size(); ++i) {
-        const IntersectionTiming t = time_intersections(presets[i], gems[i], opt.quick ? 4000 : 200000);
+    for (const auto& pr : r.presets) {
+        const IntersectionTiming& t = pr.timing;
         timing.add({t.preset, std::to_string(t.planes), std::to_string(t.triangles), std::to_string(t.rays),
                     std::to_string(t.hits), std::to_string(t.agree), fmt(t.plane_ns, 4), fmt(t.mesh_ns, 4),
                     fmt(t.mesh_ns / t.plane_ns, 3)});
@@ -250,24 +268,26 @@ void run(const ExperimentOptions& opt) {
     std::vector<Panel> panels;
     summary << "\n## Rendered diamonds (n = 2.417, Fresnel, no dispersion)\n\n"
             << "| preset | image | scene | seconds | segments |\n|---|---|---|---:|---:|\n";
-    for (const auto& p : presets) {
-        const json j = render_scene(p, opt.quick);
-        const std::string stem = "gem_render_" + p;
-        save_json(dir, stem + ".json", j);
-        const RenderResult r = render_png(scene_from_json(j, stem + ".json"), dir + "/" + stem + ".png", opt.threads);
-        renders.add({p, std::to_string(r.image.width), std::to_string(r.image.height), fmt(r.stats.seconds, 3),
-                     std::to_string(r.stats.primary_rays), std::to_string(r.stats.segments),
-                     std::to_string(r.stats.shadow_rays)});
-        panels.push_back({stem + ".png", p});
-        summary << "| " << p << " | `" << stem << ".png` | `" << stem << ".json` | " << fmt(r.stats.seconds, 3) << " | "
-                << r.stats.segments << " |\n";
+    for (const auto& pr : r.presets) {
+        const std::string stem = "gem_render_" + pr.preset;
+        save_json(dir, stem + ".json", pr.scene);
+        write_image(dir + "/" + stem + ".png", pr.render.image);
+        const RenderStats& st = pr.render.stats;
+        renders.add({pr.preset, std::to_string(pr.render.image.width), std::to_string(pr.render.image.height),
+                     fmt(st.seconds, 3), std::to_string(st.primary_rays), std::to_string(st.segments),
+                     std::to_string(st.shadow_rays)});
+        panels.push_back({stem + ".png", pr.preset});
+        summary << "| " << pr.preset << " | `" << stem << ".png` | `" << stem << ".json` | " << fmt(st.seconds, 3)
+                << " | " << st.segments << " |\n";
     }
     write_csv(dir + "/gem_renders.csv", renders);
     image_grid_figure(dir, "gem_renders", 1, static_cast<int>(panels.size()), panels,
-                      "Round brilliant presets, Fresnel diamond n = 2.417", 0.75, opt.quick ? 200 : 420);
+                      "Round brilliant presets, Fresnel diamond n = 2.417", 0.75, r.quick ? 200 : 420);
     summary << "\n`gem_renders.png` / `.pdf` shows them side by side; `refract render gem_render_PRESET.json -o x.png` "
             << "re-renders one.\n";
     write_text_atomic(dir + "/summary.md", summary.str());
 }
+
+void run(const ExperimentOptions& opt) { write(compute(opt), opt.out_dir); }
 
 }  // namespace refract::experiments::gem_geometry

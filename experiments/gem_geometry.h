@@ -9,12 +9,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/render.h"
 #include "experiments/experiment.h"
 #include "geometry/gem/brilliant.h"
 
 namespace refract::experiments::gem_geometry {
 
-void run(const ExperimentOptions& opt);
+void run(const ExperimentOptions& opt);  // compute, then write into opt.out_dir
 
 // One proportion of one preset: requested (or closed form, for the derived heights)
 // against measured on the exact polyhedron.
@@ -49,5 +50,27 @@ struct IntersectionTiming {
     double plane_ns = 0, mesh_ns = 0;    // wall time per ray (best of a few passes)
 };
 IntersectionTiming time_intersections(const std::string& preset, const Gem& gem, long rays);
+
+// ---- The whole experiment: `compute` measures into a Result (numbers and images in
+// memory), `write` turns it into CSV, figures, scenes and summary.md; `run` does both.
+
+struct PresetResult {
+    std::string preset;
+    Gem gem;
+    std::vector<ProportionRow> proportions;
+    std::vector<std::pair<std::string, int>> facet_counts;
+    IntersectionTiming timing;
+    nlohmann::json scene;  // the rendered Fresnel diamond's scene
+    RenderResult render;
+};
+
+struct Result {
+    bool quick = false;
+    std::vector<PresetResult> presets;  // brilliant_preset_names() order
+    double worst = 0;                   // largest |measured − expected| over the proportions
+};
+
+Result compute(const ExperimentOptions& opt);
+void write(const Result& r, const std::string& dir);
 
 }  // namespace refract::experiments::gem_geometry

@@ -15,11 +15,12 @@
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
-#include <spawn.h>
 
 #include "geometry/atomic_file.h"
+#include "geometry/error.h"
+#include "geometry/format.h"
+#include "validation/process.h"
 
-extern char** environ;
 
 namespace refract::experiments {
 namespace fs = std::filesystem;
@@ -49,20 +50,9 @@ std::string last_line(const std::string& text) {
 
 void write_text_atomic(const std::string& path, const std::string& text) { write_file_atomic(path, text); }
 
-std::string fmt(double v) {
-    char buf[40];
-    for (int digits = 6; digits <= 17; ++digits) {
-        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-        if (std::strtod(buf, nullptr) == v) break;
-    }
-    return buf;
-}
+std::string fmt(double v) { return format_shortest(v); }  // geometry/format.h
 
-std::string fmt(double v, int significant) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.*g", significant, v);
-    return buf;
-}
+std::string fmt(double v, int significant) { return format_significant(v, significant); }
 
 std::string Csv::text() const {
     std::string s;
@@ -164,44 +154,27 @@ void gnuplot_figure(const std::string& dir, const std::string& name, const std::
     const std::string log = temp_name(base.string()) + ".log";
     const std::string setup = "cd " + gnuplot_quote(dir) + "; outbase=" + gnuplot_quote(tmp_base);
     const std::string script = name + ".gp";
-    std::vector<std::string> args{"gnuplot", "-e", setup, script};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
     std::error_code ec;
     auto cleanup = [&] {
         fs::remove(log, ec);
         fs::remove(fs::path(dir) / (tmp_base + ".png"), ec);
         fs::remove(fs::path(dir) / (tmp_base + ".pdf"), ec);
     };
-    if (rc != 0) {
+    // The one subprocess runner (validation/process.h): gnuplot that hangs is killed.
+    validation::ProcessOptions popt;
+    popt.stdout_path = log;
+    popt.timeout_seconds = time_limit_s;
+    validation::ProcessResult run;
+    try {
+        run = validation::run_process({"gnuplot", "-e", setup, script}, popt);
+    } catch (const InputError& e) {
         cleanup();
-        throw std::runtime_error("cannot start gnuplot for " + base.string() + ".gp: " + std::strerror(rc));
+        throw std::runtime_error("cannot start gnuplot for " + base.string() + ".gp: " + e.what());
     }
-    // Wait with a time limit; gnuplot that hangs is killed.
-    const auto t0 = std::chrono::steady_clock::now();
-    int status = 0;
-    bool timed_out = false;
-    while (true) {
-        const pid_t w = ::waitpid(pid, &status, WNOHANG);
-        if (w == pid) break;
-        if (w < 0 && errno != EINTR) break;
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > time_limit_s) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            timed_out = true;
-            break;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const bool timed_out = run.timed_out;
+    if (run.exited && run.status == 127) {  // the child could not execute gnuplot
+        cleanup();
+        throw std::runtime_error("cannot start gnuplot for " + base.string() + ".gp");
     }
     std::string log_text;
     {
@@ -214,7 +187,7 @@ void gnuplot_figure(const std::string& dir, const std::string& name, const std::
         cleanup();
         throw std::runtime_error("gnuplot " + base.string() + ".gp: killed after " + fmt(time_limit_s, 3) + " s");
     }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    if (!run.ok()) {
         cleanup();
         throw std::runtime_error("gnuplot " + base.string() + ".gp failed: " + last_line(log_text));
     }

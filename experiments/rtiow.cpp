@@ -141,37 +141,85 @@ std::uint64_t count_tir_nodes(const Scene& scene) {
     return counter.tir;
 }
 
-void run(const ExperimentOptions& opt) {
-    const std::string dir = opt.out_dir;
+Result compute(const ExperimentOptions& opt) {
+    Result res;
+    res.quick = opt.quick;
+    RenderOptions ro;
+    ro.threads = opt.threads;
+
+    // ---- The stages.
+    for (const auto& st : stages()) {
+        StageResult sr;
+        sr.stage = st;
+        sr.scene = stage_scene(st.id, opt.quick);
+        const Scene s = scene_from_json(sr.scene, st.id + ".json");
+        if (st.id == "fig1_28_refract_tir") sr.image = res.stages.front().image;  // the same scene as Fig. 1.27 (see write)
+        else sr.image = render(s, ro).image;
+        sr.tir_nodes = count_tir_nodes(s);
+        res.stages.push_back(std::move(sr));
+    }
+
+    // ---- Schlick against exact Fresnel.
+    const std::vector<SchlickCase> cases{{"n=1.5", 1.5, false, {}, 0, 0, 0},
+                                         {"n=2.417", 2.417, false, {}, 0, 0, 0},
+                                         {"inside eta=1/1.5 (RTIOW: cos_i)", 1 / 1.5, false, {}, 0, 0, 0},
+                                         {"inside eta=1/1.5 (cos_t)", 1 / 1.5, true, {}, 0, 0, 0}};
+    for (SchlickCase c : cases) {
+        double sum = 0;
+        int count = 0;
+        for (int k = 0; k <= 360; ++k) {
+            const double a = 0.25 * k;
+            const double ci = std::fmax(std::cos(a * M_PI / 180.0), 0.0);
+            const double R = optics::fresnel_reflectance(ci, c.eta);
+            const auto ct = optics::cos_transmitted(ci, c.eta);
+            const double S = !ct ? 1.0 : optics::schlick(c.use_cos_t ? *ct : ci, c.eta);
+            c.rows.push_back({a, R, S});
+            if (std::abs(S - R) > c.max_error) c.max_error = std::abs(S - R), c.max_error_at = a;
+            sum += std::abs(S - R);
+            ++count;
+        }
+        c.mean_error = sum / count;
+        res.schlick.push_back(std::move(c));
+    }
+
+    // ---- Convergence of the stochastic choice to the tree.
+    Convergence& cv = res.convergence;
+    cv.reference_scene = convergence_scene(0, opt.quick);
+    cv.stochastic_scene = convergence_scene(convergence_spp(opt.quick).back(), opt.quick);
+    cv.reference = render(scene_from_json(cv.reference_scene, "convergence_reference.json"), ro).image;
+    for (int spp : convergence_spp(opt.quick)) {
+        const auto r = render(scene_from_json(convergence_scene(spp, opt.quick), "convergence"), ro);
+        cv.rows.push_back({spp, rmse(r.image, cv.reference), r.stats.seconds});
+        if (spp == convergence_spp(opt.quick).back()) cv.stochastic = r.image;
+    }
+    std::vector<double> xs, ys;
+    for (const auto& row : cv.rows) xs.push_back(row.spp), ys.push_back(row.rmse);
+    cv.fit = loglog_fit(xs, ys);
+    return res;
+}
+
+void write(const Result& res, const std::string& dir) {
     ensure_dir(dir);
     auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
     const std::string scenes = path("scenes");
     std::ostringstream md;
     md << "# Ray Tracing in One Weekend: the dielectric chapter\n\n"
-       << "Reproduced by `refract experiment rtiow-dielectric`" << (opt.quick ? " (quick mode: small images, few samples)" : "")
+       << "Reproduced by `refract experiment rtiow-dielectric`" << (res.quick ? " (quick mode: small images, few samples)" : "")
        << ". Every number below is measured by this run.\n\n";
 
     // ---- The stages.
     {
         std::vector<Panel> panels;
         std::ostringstream tirs;
-        Image first;
-        for (const auto& st : stages()) {
-            const json j = stage_scene(st.id, opt.quick);
-            save_json(scenes, st.id + ".json", j);
-            const Scene s = scene_from_json(j, st.id + ".json");
-            if (st.id == "fig1_28_refract_tir") {
-                // The same scene as Fig. 1.27 (see below): the same image.
-                write_image(path(st.id + ".png"), first);
-            } else {
-                const auto r = render_png(s, path(st.id + ".png"), opt.threads);
-                if (st.id == "fig1_27_always_refract") first = r.image;
-            }
+        for (const auto& sr : res.stages) {
+            const Stage& st = sr.stage;
+            save_json(scenes, st.id + ".json", sr.scene);
+            write_image(path(st.id + ".png"), sr.image);
             panels.push_back({st.id + ".png", st.caption});
-            tirs << "| " << st.caption << " | " << count_tir_nodes(s) << " |\n";
+            tirs << "| " << st.caption << " | " << sr.tir_nodes << " |\n";
         }
         std::ostringstream title;
-        title << "Ray Tracing in One Weekend, dielectric chapter (stochastic, " << (opt.quick ? 8 : 100)
+        title << "Ray Tracing in One Weekend, dielectric chapter (stochastic, " << (res.quick ? 8 : 100)
               << " samples per pixel)";
         image_grid_figure(dir, "stages", 2, 2, panels, title.str(), 225.0 / 400.0, 420);
         md << "## The stages of the glass sphere\n\n"
@@ -181,7 +229,7 @@ void run(const ExperimentOptions& opt) {
            << "r = 100 at (0, −100.5, −1) and centre sphere Lambertian, metal (0.8, 0.6, 0.2) on the right, glass "
            << "n = 1.5 on the left; listing 1.58 adds the inner sphere of radius −0.45 (normals flipped: a hollow "
            << "shell) and metal fuzz 0.3. `stochastic` integrator as in the book: one scattered ray per hit, "
-           << (opt.quick ? 8 : 100) << " jittered samples per pixel, depth 49 (the book's max_depth 50), sky gradient white → (0.5, 0.7, 1). "
+           << (res.quick ? 8 : 100) << " jittered samples per pixel, depth 49 (the book's max_depth 50), sky gradient white → (0.5, 0.7, 1). "
            << "The PNGs are sRGB-encoded; the book encodes with a square root (gamma 2), so its images are a "
               "little darker in the mid tones (linear 0.5: 0.707 against sRGB's 0.735).\n\n"
            << "**Camera.** The book's camera looks down −z with x to the right (right-handed). refract's camera "
@@ -204,37 +252,18 @@ void run(const ExperimentOptions& opt) {
 
     // ---- Schlick against exact Fresnel.
     {
-        struct Case {
-            std::string name;
-            double eta;
-            bool use_cos_t;
-        };
-        const std::vector<Case> cases{{"n=1.5", 1.5, false},
-                                      {"n=2.417", 2.417, false},
-                                      {"inside eta=1/1.5 (RTIOW: cos_i)", 1 / 1.5, false},
-                                      {"inside eta=1/1.5 (cos_t)", 1 / 1.5, true}};
         Csv t{{"case", "eta", "angle_deg", "fresnel", "schlick", "error"}, {}};
         md << "## Schlick against exact Fresnel\n\n"
            << "`schlick_error.csv` (`case,eta,angle_deg,fresnel,schlick,error`, 0-90° in 0.25° steps), "
            << "`schlick_error.png`. Beyond the critical angle both are 1 (the tracer folds TIR in). "
            << "Inside, RTIOW evaluates Schlick with the incident cosine; the last case uses the transmitted cosine "
               "instead.\n\n| case | max abs error | at | mean abs error |\n|---|---|---|---|\n";
-        for (size_t c = 0; c < cases.size(); ++c) {
-            double worst = 0, worst_at = 0, sum = 0;
-            int count = 0;
-            for (int k = 0; k <= 360; ++k) {
-                const double a = 0.25 * k;
-                const double ci = std::fmax(std::cos(a * M_PI / 180.0), 0.0);
-                const double R = optics::fresnel_reflectance(ci, cases[c].eta);
-                const auto ct = optics::cos_transmitted(ci, cases[c].eta);
-                const double S = !ct ? 1.0 : optics::schlick(cases[c].use_cos_t ? *ct : ci, cases[c].eta);
-                t.add({cases[c].name, fmt(cases[c].eta), fmt(a), fmt(R), fmt(S), fmt(S - R)});
-                if (std::abs(S - R) > worst) worst = std::abs(S - R), worst_at = a;
-                sum += std::abs(S - R);
-                ++count;
-            }
-            md << "| " << cases[c].name << " | " << fmt(worst, 3) << " | " << fmt(worst_at) << "° | "
-               << fmt(sum / count, 3) << " |\n";
+        for (const auto& c : res.schlick) {
+            for (const auto& row : c.rows)
+                t.add({c.name, fmt(c.eta), fmt(row.angle_deg), fmt(row.fresnel), fmt(row.schlick),
+                       fmt(row.schlick - row.fresnel)});
+            md << "| " << c.name << " | " << fmt(c.max_error, 3) << " | " << fmt(c.max_error_at) << "° | "
+               << fmt(c.mean_error, 3) << " |\n";
         }
         write_csv(path("schlick_error.csv"), t);
         std::ostringstream b;
@@ -265,25 +294,20 @@ void run(const ExperimentOptions& opt) {
 
     // ---- Convergence of the stochastic choice to the tree.
     {
-        const json ref_j = convergence_scene(0, opt.quick);
-        save_json(scenes, "convergence_reference.json", ref_j);
-        save_json(scenes, "convergence_stochastic.json", convergence_scene(convergence_spp(opt.quick).back(), opt.quick));
-        RenderOptions ro;
-        ro.threads = opt.threads;
-        const auto ref = render(scene_from_json(ref_j, "convergence_reference.json"), ro);
-        write_image(path("convergence_reference.png"), ref.image);
+        const Convergence& cv = res.convergence;
+        save_json(scenes, "convergence_reference.json", cv.reference_scene);
+        save_json(scenes, "convergence_stochastic.json", cv.stochastic_scene);
+        write_image(path("convergence_reference.png"), cv.reference);
         Csv t{{"spp", "rmse", "seconds"}, {}};
         std::vector<double> xs, ys;
-        for (int spp : convergence_spp(opt.quick)) {
-            const auto r = render(scene_from_json(convergence_scene(spp, opt.quick), "convergence"), ro);
-            const double e = rmse(r.image, ref.image);
-            xs.push_back(spp);
-            ys.push_back(e);
-            t.add({std::to_string(spp), fmt(e), fmt(r.stats.seconds, 4)});
-            if (spp == convergence_spp(opt.quick).back()) write_image(path("convergence_stochastic.png"), r.image);
+        for (const auto& row : cv.rows) {
+            xs.push_back(row.spp);
+            ys.push_back(row.rmse);
+            t.add({std::to_string(row.spp), fmt(row.rmse), fmt(row.seconds, 4)});
         }
+        write_image(path("convergence_stochastic.png"), cv.stochastic);
         write_csv(path("convergence.csv"), t);
-        const LineFit fit = loglog_fit(xs, ys);
+        const LineFit& fit = cv.fit;
         std::ostringstream b;
         b << "set datafile separator ','\nset logscale x 4\nset logscale y 10\nset format y '%g'\n"
           << "set ytics (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5)\nset grid\nset key top right box opaque\n"
@@ -309,5 +333,7 @@ void run(const ExperimentOptions& opt) {
     }
     write_text_atomic(path("summary.md"), md.str());
 }
+
+void run(const ExperimentOptions& opt) { write(compute(opt), opt.out_dir); }
 
 }  // namespace refract::experiments::rtiow

@@ -8,12 +8,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
 #include "core/scene.h"
+#include "experiments/common.h"
 #include "experiments/experiment.h"
 
 namespace refract::experiments::rtiow {
 
-void run(const ExperimentOptions& opt);
+void run(const ExperimentOptions& opt);  // compute, then write into opt.out_dir
 
 // The stages in the chapter's order.
 struct Stage {
@@ -36,5 +38,47 @@ std::vector<int> convergence_spp(bool quick);  // 1, 4, 16, ...
 // centres (branches of weight >= 1e-4, up to the scene's depth; Lambertian surfaces end
 // a branch).
 std::uint64_t count_tir_nodes(const Scene& scene);
+
+// ---- The whole experiment: `compute` measures into a Result (numbers and images in
+// memory), `write` turns it into PNGs, CSV, figures, scenes and summary.md; `run` does both.
+
+struct StageResult {
+    Stage stage;
+    nlohmann::json scene;
+    Image image;                 // Fig. 1.28 is Fig. 1.27's image (the same scene, see summary.md)
+    std::uint64_t tir_nodes = 0;  // count_tir_nodes of the stage's scene
+};
+
+struct SchlickRow {
+    double angle_deg = 0, fresnel = 0, schlick = 0;
+};
+struct SchlickCase {
+    std::string name;
+    double eta = 1;
+    bool use_cos_t = false;  // Schlick with the transmitted cosine instead of RTIOW's incident one
+    std::vector<SchlickRow> rows;  // 0–90° in 0.25° steps
+    double max_error = 0, max_error_at = 0, mean_error = 0;
+};
+
+struct ConvergenceRow {
+    int spp = 0;
+    double rmse = 0, seconds = 0;
+};
+struct Convergence {
+    nlohmann::json reference_scene, stochastic_scene;  // the latter at the largest spp
+    Image reference, stochastic;
+    std::vector<ConvergenceRow> rows;
+    LineFit fit;  // log RMSE against log spp
+};
+
+struct Result {
+    bool quick = false;
+    std::vector<StageResult> stages;
+    std::vector<SchlickCase> schlick;
+    Convergence convergence;
+};
+
+Result compute(const ExperimentOptions& opt);
+void write(const Result& r, const std::string& dir);
 
 }  // namespace refract::experiments::rtiow

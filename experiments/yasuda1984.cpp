@@ -153,23 +153,67 @@ json fig9_scene(double k, bool quick) {
                         d.str(), quick);
 }
 
-void run(const ExperimentOptions& opt) {
-    const std::string dir = opt.out_dir;
+Result compute(const ExperimentOptions& opt) {
+    Result r;
+    r.quick = opt.quick;
+    // Fig. 4: Rs, Rp and their mean for n = 1.5, 0-90 degrees in 0.5 degree steps.
+    for (int k = 0; k <= 180; ++k) {
+        const double a = 0.5 * k;
+        const auto f = optics::fresnel(std::fmax(std::cos(a * M_PI / 180.0), 0.0), 1.5);
+        r.fig4.push_back({a, f->Rs, f->Rp, f->R()});
+    }
+    // Fig. 7: T = 1 - R for several indices, (a) n > 1, (b) n < 1; peaks.
+    for (const auto* list : {&fig7_indices_a(), &fig7_indices_b()})
+        for (double n : *list) {
+            // 0.1° steps, and the critical angle itself where T drops to 0 (n < 1).
+            std::vector<double> angles;
+            for (int k = 0; k <= 900; ++k) angles.push_back(0.1 * k);
+            if (const auto c = optics::critical_angle(n)) angles.push_back(*c * 180.0 / M_PI);
+            std::sort(angles.begin(), angles.end());
+            for (double a : angles) r.fig7.push_back({n, a, transmissivity(a, n)});
+        }
+    std::vector<double> ns = fig7_indices_a();
+    for (double n : {3.5, 4.0, 4.5, 6.0, 7.0, 8.0}) ns.push_back(n);
+    std::sort(ns.begin(), ns.end());
+    for (double n : ns) r.peaks.push_back(transmissivity_peak(n));
+    r.peak_onset = peak_onset_index();
+    r.peak_beyond_70 = peak_beyond_index(70.0);
+    // Fig. 8 and Fig. 9: the rendered panels.
+    RenderOptions ro;
+    ro.threads = opt.threads;
+    for (const auto& s : fig8_spheres()) {
+        RenderedPanel p{fig8_file(s), caption8(s), s.n, fig8_scene(s.n, opt.quick), {}, {}};
+        auto rr = render(scene_from_json(p.scene, p.file + ".json"), ro);
+        p.image = std::move(rr.image);
+        p.stats = rr.stats;
+        r.fig8.push_back(std::move(p));
+    }
+    for (size_t k = 0; k < fig9_reflectivities().size(); ++k) {
+        const double kr = fig9_reflectivities()[k];
+        RenderedPanel p{fig9_file(static_cast<int>(k)),
+                        "(" + std::string(1, static_cast<char>('a' + k)) + ") reflectivity " + fmt(kr), kr,
+                        fig9_scene(kr, opt.quick), {}, {}};
+        auto rr = render(scene_from_json(p.scene, p.file + ".json"), ro);
+        p.image = std::move(rr.image);
+        p.stats = rr.stats;
+        r.fig9.push_back(std::move(p));
+    }
+    r.cost = compute_cost(opt);
+    return r;
+}
+
+void write(const Result& res, const std::string& dir) {
     ensure_dir(dir);
     auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
     std::ostringstream md;
     md << "# Yasuda et al. 1984: an improved ray tracing algorithm for transparent objects\n\n"
-       << "Reproduced by `refract experiment yasuda1984`" << (opt.quick ? " (quick mode: small images)" : "")
+       << "Reproduced by `refract experiment yasuda1984`" << (res.quick ? " (quick mode: small images)" : "")
        << ". Every number below is measured by this run.\n\n";
 
     // ---- Fig. 4: Rs, Rp and their mean for n = 1.5, 0-90 degrees in 0.5 degree steps.
     {
         Csv t{{"angle_deg", "Rs", "Rp", "R"}, {}};
-        for (int k = 0; k <= 180; ++k) {
-            const double a = 0.5 * k;
-            const auto f = optics::fresnel(std::fmax(std::cos(a * M_PI / 180.0), 0.0), 1.5);
-            t.add({fmt(a), fmt(f->Rs), fmt(f->Rp), fmt(f->R())});
-        }
+        for (const auto& row : res.fig4) t.add({fmt(row.angle_deg), fmt(row.Rs), fmt(row.Rp), fmt(row.R)});
         write_csv(path("fig4.csv"), t);
         const double brewster = optics::brewster_angle(1.5) * 180.0 / M_PI;
         std::ostringstream b;
@@ -198,15 +242,7 @@ void run(const ExperimentOptions& opt) {
     // ---- Fig. 7: T = 1 - R for several indices, (a) n > 1, (b) n < 1; peaks.
     {
         Csv t{{"n", "angle_deg", "T"}, {}};
-        for (const auto* list : {&fig7_indices_a(), &fig7_indices_b()})
-            for (double n : *list) {
-                // 0.1° steps, and the critical angle itself where T drops to 0 (n < 1).
-                std::vector<double> angles;
-                for (int k = 0; k <= 900; ++k) angles.push_back(0.1 * k);
-                if (const auto c = optics::critical_angle(n)) angles.push_back(*c * 180.0 / M_PI);
-                std::sort(angles.begin(), angles.end());
-                for (double a : angles) t.add({fmt(n), fmt(a), fmt(transmissivity(a, n))});
-            }
+        for (const auto& row : res.fig7) t.add({fmt(row.n), fmt(row.angle_deg), fmt(row.T)});
         write_csv(path("fig7.csv"), t);
         auto panel = [&](const std::string& name, const std::vector<double>& ns, const std::string& title,
                          const std::string& key) {
@@ -228,23 +264,20 @@ void run(const ExperimentOptions& opt) {
               "top right");
 
         Csv peaks{{"n", "peak_angle_deg", "T_peak", "T_0", "interior_peak"}, {}};
-        std::vector<double> ns = fig7_indices_a();
-        for (double n : {3.5, 4.0, 4.5, 6.0, 7.0, 8.0}) ns.push_back(n);
-        std::sort(ns.begin(), ns.end());
         md << "## Fig. 7: transmissivity against angle of incidence and index\n\n"
            << "`fig7.csv` (`n,angle_deg,T`, 0-90° in 0.1° steps plus the critical angle for n < 1) for n = 1.2, 1.5, 2, 3, 5, 10 (panel (a), "
            << "`fig7a.png`) and n = 0.9, 0.8, 0.6, 0.4, 0.2, 0.1 (panel (b), `fig7b.png`); `fig7_peaks.csv`.\n\n"
            << "The paper: for n ≳ 5, T rises with the angle, peaks above 70° and then falls steeply. Measured "
            << "(largest T over 0-90°, located to 1e-6°):\n\n| n | T(0°) | peak angle | T at peak |\n|---|---|---|---|\n";
-        for (double n : ns) {
-            const auto p = transmissivity_peak(n);
+        for (const auto& p : res.peaks) {
+            const double n = p.n;
             peaks.add({fmt(n), fmt(p.angle_deg, 8), fmt(p.T, 8), fmt(p.T0, 8), p.interior ? "1" : "0"});
             md << "| " << fmt(n) << " | " << fmt(p.T0, 4) << " | "
                << (p.interior ? fmt(p.angle_deg, 4) + "°" : std::string("none (T falls from 0°)")) << " | "
                << fmt(p.T, 4) << " |\n";
         }
         write_csv(path("fig7_peaks.csv"), peaks);
-        const double onset = peak_onset_index(), beyond70 = peak_beyond_index(70.0);
+        const double onset = res.peak_onset, beyond70 = res.peak_beyond_70;
         md << "\nAn interior maximum exists for n > " << fmt(onset, 7)
            << " (below that T falls monotonically from normal incidence); it lies beyond 70° for n > "
            << fmt(beyond70, 4) << ". So the paper's statement holds for n ≳ 5 (n = 5: peak at "
@@ -270,15 +303,14 @@ void run(const ExperimentOptions& opt) {
         Csv stats{{"panel", "n", "seconds", "segments", "tree_nodes", "pruned", "peak_list"}, {}};
         std::vector<Panel> panels;
         double total = 0;
-        for (const auto& s : fig8_spheres()) {
-            const json j = fig8_scene(s.n, opt.quick);
-            save_json(scenes, fig8_file(s) + ".json", j);
-            const auto r = render_png(scene_from_json(j, fig8_file(s) + ".json"), path(fig8_file(s) + ".png"), opt.threads);
-            total += r.stats.seconds;
-            stats.add({std::string(1, s.letter), fmt(s.n), fmt(r.stats.seconds, 4), std::to_string(r.stats.segments),
-                       std::to_string(r.stats.tree_nodes), std::to_string(r.stats.pruned),
-                       std::to_string(r.stats.peak_list)});
-            panels.push_back({fig8_file(s) + ".png", caption8(s)});
+        for (const auto& p : res.fig8) {
+            save_json(scenes, p.file + ".json", p.scene);
+            write_image(path(p.file + ".png"), p.image);
+            total += p.stats.seconds;
+            stats.add({p.file.substr(5), fmt(p.value), fmt(p.stats.seconds, 4), std::to_string(p.stats.segments),
+                       std::to_string(p.stats.tree_nodes), std::to_string(p.stats.pruned),
+                       std::to_string(p.stats.peak_list)});
+            panels.push_back({p.file + ".png", p.caption});
         }
         write_csv(path("fig8_stats.csv"), stats);
         image_grid_figure(dir, "fig8", 2, 5, panels, "Fig. 8  Transparent spheres, improved ray tracing (exact Fresnel)");
@@ -286,27 +318,23 @@ void run(const ExperimentOptions& opt) {
            << "Panels `fig8_a.png` ... `fig8_j.png`, assembled with captions in `fig8.png`/`.pdf`; scenes in "
            << "`scenes/fig8_*.json` (re-render with `refract render scenes/fig8_a.json -o a.png`). Sphere of radius 1 "
            << "on a yellow/red checker floor in front of a white/blue checker wall, exact Fresnel reflectance, "
-           << "fresnel-tree (threshold 0.001, depth 20, " << (opt.quick ? "1 sample" : "16 jittered samples")
+           << "fresnel-tree (threshold 0.001, depth 20, " << (res.quick ? "1 sample" : "16 jittered samples")
            << " per pixel), a point light inside the highlight sphere "
            << "(emissive, 30× the white of the surfaces), whose reflection is the bright spot. Refraction turns the "
            << "floor and wall upside down inside the sphere for n > 1; for n < 1 the sphere acts as a diverging "
            << "lens and total reflection makes its rim (n = 0.8) or nearly all of it (n = 0.1) a mirror. "
            << "High indices (5, 10) look increasingly metallic (R(0°) = "
            << fmt(optics::fresnel_reflectance(1, 5), 3) << " and " << fmt(optics::fresnel_reflectance(1, 10), 3)
-           << ").\n\nRender time of all ten panels: " << fmt(total, 3) << " s (" << (opt.quick ? 32 : 256)
+           << ").\n\nRender time of all ten panels: " << fmt(total, 3) << " s (" << (res.quick ? 32 : 256)
            << "² pixels each; `fig8_stats.csv` has rays and tree counters; the paper: about 10 minutes on an "
            << "OKITAC SYSTEM 50/40).\n\n![Fig. 8](fig8.png)\n\n";
     }
     {
         std::vector<Panel> panels;
-        for (size_t k = 0; k < fig9_reflectivities().size(); ++k) {
-            const double kr = fig9_reflectivities()[k];
-            const json j = fig9_scene(kr, opt.quick);
-            save_json(scenes, fig9_file(static_cast<int>(k)) + ".json", j);
-            render_png(scene_from_json(j, fig9_file(static_cast<int>(k)) + ".json"),
-                       path(fig9_file(static_cast<int>(k)) + ".png"), opt.threads);
-            panels.push_back({fig9_file(static_cast<int>(k)) + ".png",
-                              "(" + std::string(1, static_cast<char>('a' + k)) + ") reflectivity " + fmt(kr)});
+        for (const auto& p : res.fig9) {
+            save_json(scenes, p.file + ".json", p.scene);
+            write_image(path(p.file + ".png"), p.image);
+            panels.push_back({p.file + ".png", p.caption});
         }
         image_grid_figure(dir, "fig9", 2, 3, panels, "Fig. 9  Constant reflectivity (directions from n = 1.52)");
         md << "## Fig. 9: constant reflectivity (Whitted's ks, kt = 1 − ks)\n\n"
@@ -317,8 +345,10 @@ void run(const ExperimentOptions& opt) {
            << "the paper calls the loss of transparent quality.\n\n![Fig. 9](fig9.png)\n\n";
     }
 
-    md << run_cost(opt);
+    md << write_cost(res.cost, res.quick, dir);
     write_text_atomic(path("summary.md"), md.str());
 }
+
+void run(const ExperimentOptions& opt) { write(compute(opt), opt.out_dir); }
 
 }  // namespace refract::experiments::yasuda1984

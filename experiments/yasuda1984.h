@@ -7,12 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
+#include "core/render.h"
 #include "experiments/experiment.h"
 #include "experiments/op_count.h"
 
 namespace refract::experiments::yasuda1984 {
 
-void run(const ExperimentOptions& opt);
+void run(const ExperimentOptions& opt);  // compute, then write into opt.out_dir
 
 // Fig. 7: the indices of refraction of panels (a) (n > 1) and (b) (n < 1).
 const std::vector<double>& fig7_indices_a();
@@ -61,7 +63,58 @@ std::vector<NodeCost> count_node_costs();
 OpCounts count_sphere_test();  // one ray-sphere intersection test (geometry/shapes.cpp)
 OpCounts count_plane_test();   // one ray-plane intersection test
 
-// Writes cost.csv, memory.csv, their figures, and returns the summary section.
-std::string run_cost(const ExperimentOptions& opt);
+// §5 measured: counted arithmetic per node and per intersection test, time per node and per
+// search, whole renders with constant and Fresnel reflectivity, and the peak memory of the
+// stored tree against the list as the depth limit grows.
+struct MemoryRow {
+    int max_depth = 0;
+    RenderStats whitted, list_threshold0, list_threshold_1_255;  // peak_list: nodes / entries per pixel
+};
+struct CostResult {
+    std::vector<NodeCost> node_costs;
+    OpCounts sphere_test, plane_test;
+    double ns_constant = 0, ns_fresnel = 0, ns_schlick = 0;  // SceneTracer::interact per node (fastest round)
+    double ns_search = 0;                                    // one intersection search in the Fig. 8 scene
+    double render_best[2] = {0, 0}, render_median[2] = {0, 0};  // [constant, fresnel], seconds, one thread
+    RenderStats render_stats[2];
+    std::vector<MemoryRow> memory;
+};
+CostResult compute_cost(const ExperimentOptions& opt);
+// Writes cost.csv, cost_render.csv, memory.csv, the memory figure and scenes/tree_growth.json;
+// returns the summary section.
+std::string write_cost(const CostResult& c, bool quick, const std::string& dir);
+std::string run_cost(const ExperimentOptions& opt);  // both
+
+
+// ---- The whole experiment: `compute` measures into a Result (numbers and images in
+// memory), `write` turns it into CSV, figures, images, scenes and summary.md; `run` does both.
+
+struct Fig4Row {
+    double angle_deg = 0, Rs = 0, Rp = 0, R = 0;  // n = 1.5
+};
+struct Fig7Row {
+    double n = 0, angle_deg = 0, T = 0;
+};
+struct RenderedPanel {
+    std::string file;     // "fig8_a", "fig9_c", ...
+    std::string caption;
+    double value = 0;     // the sphere's index (Fig. 8) or the reflectivity (Fig. 9)
+    nlohmann::json scene;
+    Image image;
+    RenderStats stats;
+};
+
+struct Result {
+    bool quick = false;
+    std::vector<Fig4Row> fig4;                // 0–90° in 0.5° steps
+    std::vector<Fig7Row> fig7;                // panels (a) and (b), 0.1° steps plus the critical angle
+    std::vector<TransmissivityPeak> peaks;    // Fig. 7's indices and a few more, ascending
+    double peak_onset = 0, peak_beyond_70 = 0;
+    std::vector<RenderedPanel> fig8, fig9;
+    CostResult cost;
+};
+
+Result compute(const ExperimentOptions& opt);
+void write(const Result& r, const std::string& dir);
 
 }  // namespace refract::experiments::yasuda1984

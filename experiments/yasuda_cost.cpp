@@ -195,19 +195,12 @@ json tree_growth_scene(int max_depth, double threshold, const std::string& integ
     };
 }
 
-std::string run_cost(const ExperimentOptions& opt) {
-    const std::string dir = opt.out_dir;
-    auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
-    std::ostringstream md;
-
+CostResult compute_cost(const ExperimentOptions& opt) {
+    CostResult cr;
     // ---- Counted arithmetic per branching node.
-    const auto costs = count_node_costs();
-    const OpCounts sphere = count_sphere_test(), plane = count_plane_test();
-    auto find = [&](const std::string& f, const std::string& m) {
-        for (const auto& c : costs)
-            if (c.formulation == f && c.model == m) return c.ops;
-        return OpCounts{};
-    };
+    cr.node_costs = count_node_costs();
+    cr.sphere_test = count_sphere_test();
+    cr.plane_test = count_plane_test();
 
     // ---- Measured time per node: SceneTracer::node() over the hits of primary rays on
     // the Fig. 8 sphere (n = 1.52), for each reflectance model; and per intersection search.
@@ -279,31 +272,18 @@ std::string run_cost(const ExperimentOptions& opt) {
         sink = sink + acc;
         ns_isect = std::min(ns_isect, 1e9 * seconds_since(t0) / (static_cast<double>(reps) * primaries.size()));
     }
-    const double ns_const = variants[0].best_ns, ns_fres = variants[1].best_ns, ns_schl = variants[2].best_ns;
-
-    Csv cost{{"item", "model", "mul", "div", "muldiv", "add", "sqrt_pow", "cmp", "muldiv_vs_constant", "ns_per_call"}, {}};
-    for (const auto& c : costs) {
-        const double ratio = static_cast<double>(c.ops.muldiv()) / find(c.formulation, "constant").muldiv();
-        std::string ns = "";
-        if (c.formulation == "refract")
-            ns = fmt(c.model == "constant" ? ns_const : c.model == "fresnel" ? ns_fres : ns_schl, 4);
-        cost.add({"node:" + c.formulation, c.model, std::to_string(c.ops.mul), std::to_string(c.ops.div),
-                  std::to_string(c.ops.muldiv()), std::to_string(c.ops.add), std::to_string(c.ops.sqrt),
-                  std::to_string(c.ops.cmp), fmt(ratio, 4), ns.empty() ? "" : ns});
-    }
-    for (const auto& [name, ops] : {std::pair<std::string, OpCounts>{"test:sphere", sphere}, {"test:plane", plane}})
-        cost.add({name, "", std::to_string(ops.mul), std::to_string(ops.div), std::to_string(ops.muldiv()),
-                  std::to_string(ops.add), std::to_string(ops.sqrt), std::to_string(ops.cmp), "", ""});
-    cost.add({"search:fig8-scene", "", "", "", std::to_string(2 * sphere.muldiv() + 2 * plane.muldiv()), "", "", "", "",
-              fmt(ns_isect, 4)});
+    cr.ns_constant = variants[0].best_ns;
+    cr.ns_fresnel = variants[1].best_ns;
+    cr.ns_schlick = variants[2].best_ns;
+    cr.ns_search = ns_isect;
 
     // ---- Total render time, Fresnel against constant, on identical trees: threshold 0
     // keeps every branch of both (R is never 0 or 1 outside TIR), so both trace the same
     // rays and only the reflectance arithmetic differs. One thread, best of three.
-    Csv render_t{{"model", "seconds", "median_seconds", "segments", "tree_nodes", "ns_per_segment"}, {}};
-    double sec[2] = {1e300, 1e300};
+    double* sec = cr.render_best;
+    sec[0] = sec[1] = 1e300;
     std::vector<double> all_sec[2];
-    RenderStats rstats[2];
+    RenderStats* rstats = cr.render_stats;
     std::vector<Scene> rscenes;
     for (int k = 0; k < 2; ++k) {
         json j = k == 0 ? fig9_scene(0.1, false) : fig8_scene(1.52, false);
@@ -323,12 +303,62 @@ std::string run_cost(const ExperimentOptions& opt) {
             all_sec[k].push_back(r.stats.seconds);
             rstats[k] = r.stats;
         }
-    const std::uint64_t segs[2] = {rstats[0].segments, rstats[1].segments};
-    double median[2];
+    double* median = cr.render_median;
     for (int k = 0; k < 2; ++k) {
         std::sort(all_sec[k].begin(), all_sec[k].end());
         median[k] = all_sec[k][all_sec[k].size() / 2];
     }
+    // ---- Memory as the tree grows.
+    const int max_d = opt.quick ? 6 : 16;
+    for (int d = 1; d <= max_d; ++d) {
+        auto run_one = [&](const std::string& integ, double thr) {
+            const Scene s = scene_from_json(tree_growth_scene(d, thr, integ, opt.quick), "tree growth");
+            RenderOptions ro;
+            ro.threads = opt.threads;
+            return render(s, ro).stats;
+        };
+        MemoryRow row;
+        row.max_depth = d;
+        row.whitted = run_one("whitted", 0);
+        row.list_threshold0 = run_one("fresnel-tree", 0);
+        row.list_threshold_1_255 = run_one("fresnel-tree", 1.0 / 255);
+        cr.memory.push_back(row);
+    }
+    return cr;
+}
+
+std::string write_cost(const CostResult& c, bool quick, const std::string& dir) {
+    auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
+    std::ostringstream md;
+    const auto& costs = c.node_costs;
+    const OpCounts sphere = c.sphere_test, plane = c.plane_test;
+    auto find = [&](const std::string& f, const std::string& m) {
+        for (const auto& x : costs)
+            if (x.formulation == f && x.model == m) return x.ops;
+        return OpCounts{};
+    };
+    const double ns_const = c.ns_constant, ns_fres = c.ns_fresnel, ns_schl = c.ns_schlick, ns_isect = c.ns_search;
+    const double* sec = c.render_best;
+    const double* median = c.render_median;
+    const RenderStats* rstats = c.render_stats;
+    const std::uint64_t segs[2] = {rstats[0].segments, rstats[1].segments};
+    Csv cost{{"item", "model", "mul", "div", "muldiv", "add", "sqrt_pow", "cmp", "muldiv_vs_constant", "ns_per_call"}, {}};
+    for (const auto& c : costs) {
+        const double ratio = static_cast<double>(c.ops.muldiv()) / find(c.formulation, "constant").muldiv();
+        std::string ns = "";
+        if (c.formulation == "refract")
+            ns = fmt(c.model == "constant" ? ns_const : c.model == "fresnel" ? ns_fres : ns_schl, 4);
+        cost.add({"node:" + c.formulation, c.model, std::to_string(c.ops.mul), std::to_string(c.ops.div),
+                  std::to_string(c.ops.muldiv()), std::to_string(c.ops.add), std::to_string(c.ops.sqrt),
+                  std::to_string(c.ops.cmp), fmt(ratio, 4), ns.empty() ? "" : ns});
+    }
+    for (const auto& [name, ops] : {std::pair<std::string, OpCounts>{"test:sphere", sphere}, {"test:plane", plane}})
+        cost.add({name, "", std::to_string(ops.mul), std::to_string(ops.div), std::to_string(ops.muldiv()),
+                  std::to_string(ops.add), std::to_string(ops.sqrt), std::to_string(ops.cmp), "", ""});
+    cost.add({"search:fig8-scene", "", "", "", std::to_string(2 * sphere.muldiv() + 2 * plane.muldiv()), "", "", "", "",
+              fmt(ns_isect, 4)});
+
+    Csv render_t{{"model", "seconds", "median_seconds", "segments", "tree_nodes", "ns_per_segment"}, {}};
     for (int k = 0; k < 2; ++k)
         render_t.add({k == 0 ? "constant" : "fresnel", fmt(sec[k], 4), fmt(median[k], 4), std::to_string(rstats[k].segments),
                       std::to_string(rstats[k].tree_nodes), fmt(sec[k] / rstats[k].segments * 1e9, 4)});
@@ -363,31 +393,26 @@ std::string run_cost(const ExperimentOptions& opt) {
        << " ns with a constant reflectivity, " << fmt(ns_fres, 3) << " ns with Fresnel (+"
        << fmt(100 * (ns_fres / ns_const - 1), 3) << " %) and " << fmt(ns_schl, 3)
        << " ns with Schlick; one intersection search in the Fig. 8 scene takes " << fmt(ns_isect, 3)
-       << " ns. A whole render (`cost_render.csv`: the Fig. 8/9 sphere, " << (opt.quick ? 24 : 384) << "², threshold 0, depth 10, identical "
+       << " ns. A whole render (`cost_render.csv`: the Fig. 8/9 sphere, " << (quick ? 24 : 384) << "², threshold 0, depth 10, identical "
        << "trees: " << segs[0] << " and " << segs[1] << " segments) takes " << fmt(sec[0], 4) << " s with constant "
        << "and " << fmt(sec[1], 4) << " s with Fresnel reflectivity (fastest run; medians " << fmt(median[0], 4)
        << " and " << fmt(median[1], 4) << " s): a total increase of " << fmt(100 * (sec[1] / sec[0] - 1), 3)
        << " %. Counted operations overstate the cost on a current CPU: the reflectance is a few arithmetic "
           "instructions beside memory traffic, branches, square roots and the shading of the leaves, so the "
           "paper's conclusion (the total time barely grows) holds even more strongly"
-       << (opt.quick ? " (quick mode: tiny image, one round; timings are noisy)" : "") << ".\n\n";
+       << (quick ? " (quick mode: tiny image, one round; timings are noisy)" : "") << ".\n\n";
 
     // ---- Memory as the tree grows.
     Csv mem{{"max_depth", "whitted_peak_nodes", "whitted_bytes", "list_peak_entries_threshold0", "list_bytes_threshold0",
              "list_peak_entries_threshold_1_255", "list_bytes_threshold_1_255", "segments_per_pixel"},
             {}};
-    const int max_d = opt.quick ? 6 : 16;
+    const int max_d = c.memory.empty() ? 0 : c.memory.back().max_depth;
     std::ostringstream table;
     table << "| depth | Whitted tree (nodes) | bytes | list, threshold 0 (entries) | bytes | list, threshold 1/255 | bytes |\n"
           << "|---|---|---|---|---|---|---|\n";
-    for (int d = 1; d <= max_d; ++d) {
-        auto run_one = [&](const std::string& integ, double thr) {
-            const Scene s = scene_from_json(tree_growth_scene(d, thr, integ, opt.quick), "tree growth");
-            RenderOptions ro;
-            ro.threads = opt.threads;
-            return render(s, ro).stats;
-        };
-        const auto w = run_one("whitted", 0), l0 = run_one("fresnel-tree", 0), l1 = run_one("fresnel-tree", 1.0 / 255);
+    for (const auto& row : c.memory) {
+        const int d = row.max_depth;
+        const auto &w = row.whitted, &l0 = row.list_threshold0, &l1 = row.list_threshold_1_255;
         const double pixels = static_cast<double>(w.primary_rays);
         mem.add({std::to_string(d), std::to_string(w.peak_list), std::to_string(w.peak_list * kWhittedNodeBytes),
                  std::to_string(l0.peak_list), std::to_string(l0.peak_list * kListEntryBytes), std::to_string(l1.peak_list),
@@ -421,5 +446,8 @@ std::string run_cost(const ExperimentOptions& opt) {
     save_json(path("scenes"), "tree_growth.json", tree_growth_scene(16, 0, "whitted", false));
     return md.str();
 }
+
+
+std::string run_cost(const ExperimentOptions& opt) { return write_cost(compute_cost(opt), opt.quick, opt.out_dir); }
 
 }  // namespace refract::experiments::yasuda1984

@@ -5,17 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/format.h"
+
 namespace refract {
 
 struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// A number as an error message shows it (up to 10 significant digits).
-inline std::string format_value(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    return buf;
-}
+// A number as an error message shows it (up to 10 significant digits; geometry/format.h).
+inline std::string format_value(double v) { return format_significant(v, 10); }
 
 }  // namespace refract

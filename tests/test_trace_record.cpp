@@ -85,3 +85,20 @@ TEST_CASE("Path record: a pixel outside the image and a wavelength outside the t
     CHECK_THROWS_WITH(trace_ray(s, Ray{Vec3(0, 1, -5), Vec3(0, 0, 1)}, 1200), Catch::Contains("--wavelength"));
     CHECK_THROWS_WITH(trace_ray(s, Ray{Vec3(0, 1, -5), Vec3(0, 0, 0)}), Catch::Contains("direction"));
 }
+
+TEST_CASE("Path record: the normal at each hit is unit, faces the incoming ray and gives cos_i", "[trace]") {
+    const Scene s = sphere_on_floor({{"type", "dielectric"}, {"ior", 1.5}});
+    const TraceRecord r = trace_pixel(s, 20, 14);
+    int dielectric = 0;
+    for (const auto& seg : r.segments) {
+        if (!seg.hit) continue;
+        CHECK(seg.normal.norm() == Approx(1.0).epsilon(1e-14));
+        CHECK(seg.ray.dir.dot(seg.normal) < 0);
+        if (seg.eta > 0) {
+            ++dielectric;
+            CHECK(-seg.ray.dir.dot(seg.normal) == Approx(seg.cos_i).epsilon(1e-14));
+            if (seg.object == "ball") CHECK(seg.normal.dot(seg.point - Vec3(0, 1, 0)) * (seg.entering ? 1 : -1) > 0);
+        }
+    }
+    CHECK(dielectric >= 2);
+}

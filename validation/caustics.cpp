@@ -8,6 +8,7 @@
 #include "core/render.h"
 #include "core/scene_json.h"
 #include "geometry/error.h"
+#include "geometry/format.h"
 #include "validation/pov_export.h"
 
 namespace refract::validation {
@@ -94,12 +95,7 @@ Stats measure(const Image& img, const Camera& cam, const FloorFrame& f) {
     return s;
 }
 
-std::string fmt(double v) {
-    std::ostringstream o;
-    o.precision(4);
-    o << v;
-    return o.str();
-}
+std::string fmt(double v) { return format_significant(v, 4); }
 
 }  // namespace
 

@@ -44,14 +44,14 @@ ProcessResult run_process(const std::vector<std::string>& args, const ProcessOpt
     if (pid == 0) {
         ::setpgid(0, 0);  // its own process group, so a time-out kills it whole
         if (!opt.dir.empty() && ::chdir(opt.dir.c_str()) != 0) ::_exit(126);
-        const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
         if (fd >= 0) {
             ::dup2(fd, 1);
             if (err.empty()) ::dup2(fd, 2);
             ::close(fd);
         }
         if (!err.empty()) {
-            const int fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            const int fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
             if (fe >= 0) {
                 ::dup2(fe, 2);
                 ::close(fe);

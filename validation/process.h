@@ -1,5 +1,5 @@
 #pragma once
-// Running another program: the POV-Ray runner's and the benchmarks' one way to start a
+// Running another program: the one way (POV-Ray runner, gnuplot, benchmarks) to start a
 // process, wait for it with a time limit, and read how it ended.
 #include <string>
 #include <vector>

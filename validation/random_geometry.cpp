@@ -4,6 +4,7 @@
 #include <map>
 
 #include "geometry/error.h"
+#include "geometry/format.h"
 #include "geometry/gem/brilliant.h"
 
 namespace refract::validation::random_detail {
@@ -47,11 +48,7 @@ Vec3 sig3(const Vec3& v) { return {sig(v.x()), sig(v.y()), sig(v.z())}; }
 Vec3 dec3(const Vec3& v, int places) { return {dec(v.x(), places), dec(v.y(), places), dec(v.z(), places)}; }
 json arr(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
-std::string num(double v) {  // shortest round-trip form
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
+std::string num(double v) { return format_shortest(v); }  // shortest round-trip form (geometry/format.h)
 
 Mat3 axis_angle(const Vec3& axis, double angle) {  // Rodrigues
     const Vec3 k = axis.normalized();

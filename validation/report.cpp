@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "geometry/format.h"
 #include "validation/files.h"
 #include "validation/suite.h"
 
@@ -14,7 +15,7 @@ std::string fmt(double v, bool percent) {
     if (std::isinf(v)) return "inf";
     char buf[64];
     if (percent) std::snprintf(buf, sizeof buf, "%.3f %%", 100.0 * v);
-    else std::snprintf(buf, sizeof buf, "%.3g", v);
+    else return format_significant(v, 3);
     return buf;
 }
 

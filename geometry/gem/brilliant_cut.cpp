@@ -7,6 +7,7 @@
 #include <map>
 
 #include "geometry/error.h"
+#include "geometry/format.h"
 #include "geometry/gem/brilliant.h"
 
 namespace refract {
@@ -15,11 +16,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 double rad(double deg) { return deg * kPi / 180.0; }
 
-std::string num(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
+std::string num(double v) { return format_significant(v, 6); }
 
 [[noreturn]] void fail(const std::string& what) { throw InputError("brilliant cut: " + what); }
 

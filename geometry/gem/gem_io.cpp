@@ -7,17 +7,15 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "geometry/atomic_file.h"
 #include "geometry/error.h"
+#include "geometry/format.h"
 #include "geometry/gem/gem_io.h"
 
 namespace refract {
 namespace {
 
-std::string g17(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", v == 0 ? 0.0 : v);  // no "-0"
-    return buf;
-}
+std::string g17(double v) { return format_significant(v == 0 ? 0.0 : v, 17); }  // no "-0"
 std::string xyz(const Vec3& p, const char* sep = " ") { return g17(p.x()) + sep + g17(p.y()) + sep + g17(p.z()); }
 
 std::string header_comment(const Gem& gem) {
@@ -78,29 +76,6 @@ std::string lower(std::string s) {
     return s;
 }
 
-void write_atomically(const std::string& path, const std::string& text) {
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (".tmp-" + target.filename().string() + "-" + std::to_string(::getpid()));
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw InputError("output file '" + path + "': cannot be written");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        std::error_code ec2;
-        fs::remove(tmp, ec2);
-        throw InputError("output file '" + path + "': cannot be written (" + ec.message() + ")");
-    }
-}
-
 }  // namespace
 
 std::vector<std::string> gem_file_extensions() { return {".obj", ".off", ".ply", ".pov"}; }
@@ -125,7 +100,7 @@ void write_gem(const Gem& gem, const std::string& path) {
     else
         throw InputError("output file '" + path + "': unknown extension '" + ext +
                          "' (allowed: .obj, .off, .ply, .pov)");
-    write_atomically(path, text);
+    write_file_atomic(path, text);  // geometry/atomic_file.h: the one atomic writer
 }
 
 }  // namespace refract

@@ -1,0 +1,41 @@
+# CTest "install:consumer": cmake --install the build tree into BUILD/install-test, build
+# examples/cpp against that prefix alone, run it, and import the installed Python package.
+# cmake -DBUILD=... -DSOURCE=... [-DPYTHON=...] -P cmake/test_install.cmake
+set(prefix ${BUILD}/install-test)
+file(REMOVE_RECURSE ${prefix} ${BUILD}/consumer-build)
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${out}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
+foreach(f include/refract/core/render.h lib/cmake/refract/refractConfig.cmake lib/cmake/refract/refractTargets.cmake)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "not installed: ${f}")
+  endif()
+endforeach()
+run(${CMAKE_COMMAND} -S ${SOURCE}/examples/cpp -B ${BUILD}/consumer-build -G Ninja -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_PREFIX_PATH=${prefix})
+run(${CMAKE_COMMAND} --build ${BUILD}/consumer-build)
+run(${BUILD}/consumer-build/glass_sphere)
+if(NOT last_output MATCHES "radiance 1\\.0000000000")
+  message(FATAL_ERROR "unexpected consumer output: ${last_output}")
+endif()
+if(PYTHON)
+  file(GLOB_RECURSE init ${prefix}/lib/*/__init__.py)
+  list(FILTER init INCLUDE REGEX "/refract/__init__.py$")
+  list(GET init 0 init)
+  get_filename_component(pkg ${init} DIRECTORY)
+  get_filename_component(site ${pkg} DIRECTORY)
+  file(WRITE ${BUILD}/consumer-build/check_module.py
+       "import refract\n"
+       "assert refract.__file__.startswith('${prefix}'), refract.__file__\n"
+       "print('installed module: R(normal, 1.5) =', refract.optics.fresnel(1.0, 1.5).R)\n")
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${site} ${PYTHON} ${BUILD}/consumer-build/check_module.py)
+  if(NOT last_output MATCHES "R\\(normal, 1.5\\) = 0.04")
+    message(FATAL_ERROR "the installed module did not load: ${last_output}")
+  endif()
+endif()

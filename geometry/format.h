@@ -1,0 +1,16 @@
+#pragma once
+// Numbers as text, one way for the whole project (messages, CSV cells, exported scenes and
+// meshes, reports): base layer, beside the error type (error.h) and the atomic writer
+// (atomic_file.h).
+#include <string>
+
+namespace refract {
+
+// The shortest "%.Ng" (N from 6 to 17) that reads back as the same double: CSV cells,
+// generated scenes. Round-trips every finite double.
+std::string format_shortest(double v);
+
+// "%.Ng" with N = `significant` digits (1 to 17): messages (10), reports (3), exports (17).
+std::string format_significant(double v, int significant);
+
+}  // namespace refract

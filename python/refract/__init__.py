@@ -1,0 +1,149 @@
+"""refract: the physics of refraction in rendering, from Python (docs/python.md).
+
+Scenes come from dicts in the scene-file format (docs/scene-format.md), from JSON text or
+from files, with the scene reader's own checks and messages: bad input raises
+refract.InputError (a ValueError) naming the file or source, the field or the parameter.
+"""
+import os as _os
+
+# An installed package carries the image module beside it (the build tree's is found by core).
+_image_io = _os.path.join(_os.path.dirname(__file__), "librefract_image_io.so")
+if not _os.environ.get("REFRACT_IMAGE_IO") and _os.path.exists(_image_io):
+    _os.environ["REFRACT_IMAGE_IO"] = _image_io
+
+from . import _refract
+from ._refract import (  # noqa: F401  (the public API)
+    Dispersion,
+    FresnelTerms,
+    InputError,
+    Scene,
+    brilliant_presets,
+    experiments,
+    fraunhofer,
+    gem_geometry,
+    gem_proportions,
+    load_scene,
+    material,
+    ohtsuka1998,
+    materials,
+    optics,
+    optics_bench,
+    polarisation,
+    polarisation_sphere,
+    read_image,
+    rtiow_dielectric,
+    run_experiment,
+    write_image,
+    yasuda1984,
+)
+
+__all__ = [
+    "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
+    "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
+    "materials", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
+    "trace", "trace_pixel", "write_image", "yasuda1984",
+]
+__version__ = "0.1"
+for _c in (Dispersion, FresnelTerms, InputError, Scene):
+    _c.__module__ = "refract"
+
+
+def scene(source, name=None):
+    """A Scene from a dict (the scene-file format), a JSON string or a file path.
+
+    `name` is what error messages call the source (default: the path, or "scene")."""
+    if isinstance(source, Scene):
+        return source
+    if isinstance(source, dict):
+        return _refract.parse_scene(source, name or "scene")
+    if isinstance(source, (str, _os.PathLike)):
+        text = _os.fspath(source)
+        if text.lstrip().startswith("{"):
+            return _refract.parse_scene_text(text, name or "scene")
+        return load_scene(text)
+    raise TypeError("refract.scene: expected a Scene, a dict, JSON text or a path, not " + type(source).__name__)
+
+
+class RenderResult(dict):
+    """The arrays of one render, viewing the C++ image buffers without a copy.
+
+    rgb (height, width, 3), stats (dict), and where the scene or the options have them:
+    wavelengths (nm) and spectral (height, width, bands), stokes (height, width, 4, 3:
+    S0..S3 of R, G, B), dolp and aolp (height, width), lost (height, width, 3: depth, limits,
+    threshold). Keys are also attributes: result.rgb."""
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+
+def render(scene_, threads=0, spectral_channels=False, lost_energy=False, max_memory=0, progress=False):
+    """Renders a scene (Scene, dict, JSON text or path) as `refract render` does.
+
+    The GIL is released while it runs; Ctrl-C (KeyboardInterrupt) stops it at the next tile."""
+    return RenderResult(_refract.render(scene(scene_), threads, spectral_channels, lost_energy, max_memory, progress))
+
+
+class RayTree(list):
+    """Every node of one ray's tree (dicts, parents before children), with the ray's value.
+
+    Per node: id, parent (-1: the primary ray), depth, reflections, transmissions, origin,
+    direction, weight (cumulative attenuation), event ("background", "diffuse", "emissive",
+    "mirror", "reflection and refraction", "reflection only", "total internal reflection"),
+    hit, length, point, normal (incident side), object, facet, facet_label, entering, eta,
+    cos_i, cos_t, Rs, Rp, R, light (what the node brings to the root) and wavelength (nm,
+    None for an RGB ray). Fields that do not apply are None."""
+
+    def __init__(self, nodes, radiance, wavelength):
+        super().__init__(nodes)
+        self.radiance = radiance
+        self.wavelength = wavelength
+
+    def __repr__(self):
+        return "RayTree(%d nodes, radiance=%r)" % (len(self), self.radiance)
+
+
+def _check_polarisation(polarisation):
+    if polarisation not in (None, "natural"):
+        raise InputError("trace: polarisation %r: the ray-tree record is natural light (None or 'natural'); "
+                         "render a scene with render.polarisation 'exact' for Stokes images" % (polarisation,))
+
+
+def trace(scene_, origin, direction, wavelength=None, polarisation=None):
+    """The whole tree of one ray, as `refract trace --ray` records it (core/trace_record.h).
+
+    wavelength (nm): every dielectric with a dispersion takes its index there; None: an RGB ray
+    with each material's nominal index."""
+    _check_polarisation(polarisation)
+    return RayTree(*_refract.trace_ray(scene(scene_), origin, direction, wavelength))
+
+
+def trace_pixel(scene_, x, y, wavelength=None, polarisation=None):
+    """The tree of the ray through the centre of pixel (x, y)."""
+    _check_polarisation(polarisation)
+    return RayTree(*_refract.trace_pixel(scene(scene_), x, y, wavelength))
+
+
+def n(name, wavelength_nm):
+    """The index of catalogue material `name` at wavelength_nm (a number or an array)."""
+    return material(name).n(wavelength_nm)
+
+
+def dispersion(spec, where="dispersion"):
+    """A Dispersion from a scene file's value: a catalogue name, a number or a dict
+    such as {"model": "cauchy", "A": 1.5046, "B": 0.0042}."""
+    import json
+    return _refract.dispersion_from_json(spec if isinstance(spec, str) else json.dumps(spec), where)
+
+
+def cut_brilliant(preset=None, **params):
+    """Builds a round brilliant exactly (CGAL) with girdle radius 1, z up.
+
+    preset: None (the defaults), "tolkowsky" or "gia-default"; params override it: table,
+    crown_angle, pavilion_angle, star, lower_half, girdle, culet (% of the diameter, degrees),
+    girdle_facets, bruted_planes. Returns a dict: vertices (N, 3), triangles (M, 3),
+    triangle_facet (M,), planes (K, 4: unit outward normal, offset), labels, facets,
+    facet_counts, measured and closed_form proportions, cut, girdle_description."""
+    return _refract._cut_brilliant(preset, params)

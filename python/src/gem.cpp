@@ -1,0 +1,148 @@
+// The round brilliant cut (geometry/gem/brilliant.h).
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "geometry/error.h"
+#include "geometry/gem/brilliant.h"
+#include "python/src/bindings.h"
+
+namespace refract::python {
+
+namespace {
+
+py::dict proportions(const BrilliantProportions& p) {
+    py::dict d;
+    d["table"] = p.table;
+    d["crown_angle"] = p.crown_angle;
+    d["pavilion_angle"] = p.pavilion_angle;
+    d["star"] = p.star;
+    d["lower_half"] = p.lower_half;
+    d["girdle"] = p.girdle;
+    d["culet"] = p.culet;
+    d["crown_height"] = p.crown_height;
+    d["pavilion_depth"] = p.pavilion_depth;
+    d["total_depth"] = p.total_depth;
+    return d;
+}
+
+// The parameters by name, as BrilliantCut spells them.
+using Setter = std::function<void(BrilliantCut&, double, const std::string&)>;
+const std::map<std::string, Setter>& cut_parameters() {
+    static const std::map<std::string, Setter> p = [] {
+        std::map<std::string, Setter> m;
+        auto real = [](double BrilliantCut::*f) { return [f](BrilliantCut& c, double v, const std::string&) { c.*f = v; }; };
+        auto integer = [](int BrilliantCut::*f) {
+            return [f](BrilliantCut& c, double v, const std::string& name) {
+                if (!(std::floor(v) == v && std::abs(v) < 1e9))
+                    throw InputError("cut_brilliant: " + name + " = " + format_value(v) + ": must be an integer");
+                c.*f = static_cast<int>(v);
+            };
+        };
+        m["table"] = real(&BrilliantCut::table);
+        m["crown_angle"] = real(&BrilliantCut::crown_angle);
+        m["pavilion_angle"] = real(&BrilliantCut::pavilion_angle);
+        m["star"] = real(&BrilliantCut::star);
+        m["lower_half"] = real(&BrilliantCut::lower_half);
+        m["girdle"] = real(&BrilliantCut::girdle);
+        m["culet"] = real(&BrilliantCut::culet);
+        m["girdle_facets"] = integer(&BrilliantCut::girdle_facets);
+        m["bruted_planes"] = integer(&BrilliantCut::bruted_planes);
+        return m;
+    }();
+    return p;
+}
+
+py::dict cut_dict(const BrilliantCut& c) {
+    py::dict d;
+    d["table"] = c.table;
+    d["crown_angle"] = c.crown_angle;
+    d["pavilion_angle"] = c.pavilion_angle;
+    d["star"] = c.star;
+    d["lower_half"] = c.lower_half;
+    d["girdle"] = c.girdle;
+    d["culet"] = c.culet;
+    d["girdle_facets"] = c.girdle_facets;
+    d["bruted_planes"] = c.bruted_planes;
+    return d;
+}
+
+py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
+    BrilliantCut cut = preset.is_none() ? BrilliantCut{} : brilliant_preset(preset.cast<std::string>());
+    for (const auto& kv : params) {
+        const std::string name = py::str(kv.first);
+        const auto it = cut_parameters().find(name);
+        if (it == cut_parameters().end()) {
+            std::string known;
+            for (const auto& p : cut_parameters()) known += (known.empty() ? "" : ", ") + p.first;
+            throw InputError("cut_brilliant: unknown parameter '" + name + "' (known: " + known + ")");
+        }
+        double v = 0;
+        try {
+            v = kv.second.cast<double>();
+        } catch (const py::cast_error&) {
+            throw InputError("cut_brilliant: " + name + ": must be a number");
+        }
+        it->second(cut, v, name);
+    }
+    Gem gem;
+    {
+        py::gil_scoped_release nogil;
+        gem = build_brilliant(cut);
+    }
+    const auto nv = static_cast<py::ssize_t>(gem.mesh.vertices.size());
+    const auto nt = static_cast<py::ssize_t>(gem.mesh.triangles.size());
+    const auto nf = static_cast<py::ssize_t>(gem.facets.size());
+    py::array_t<double> vertices({nv, py::ssize_t(3)});
+    py::array_t<std::int64_t> triangles({nt, py::ssize_t(3)});
+    py::array_t<std::int64_t> triangle_facet(nt);
+    py::array_t<double> planes({nf, py::ssize_t(4)});
+    auto V = vertices.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < nv; ++i)
+        for (int k = 0; k < 3; ++k) V(i, k) = gem.mesh.vertices[static_cast<size_t>(i)][k];
+    auto T = triangles.mutable_unchecked<2>();
+    auto TF = triangle_facet.mutable_unchecked<1>();
+    for (py::ssize_t i = 0; i < nt; ++i) {
+        for (int k = 0; k < 3; ++k) T(i, k) = gem.mesh.triangles[static_cast<size_t>(i)][k];
+        TF(i) = gem.triangle_facet[static_cast<size_t>(i)];
+    }
+    auto P = planes.mutable_unchecked<2>();
+    py::list facets, labels;
+    for (py::ssize_t i = 0; i < nf; ++i) {
+        const GemFacet& f = gem.facets[static_cast<size_t>(i)];
+        for (int k = 0; k < 3; ++k) P(i, k) = f.plane.normal[k];
+        P(i, 3) = f.plane.offset;
+        labels.append(f.label);
+        py::dict fd;
+        fd["label"] = f.label;
+        fd["kind"] = facet_kind(f.label);
+        fd["vertex_ids"] = f.vertex_ids;
+        facets.append(fd);
+    }
+    py::dict counts;
+    for (const auto& [kind, n] : facet_counts(gem)) counts[py::str(kind)] = n;
+    py::dict d;
+    d["vertices"] = vertices;
+    d["triangles"] = triangles;
+    d["triangle_facet"] = triangle_facet;
+    d["planes"] = planes;
+    d["labels"] = labels;
+    d["facets"] = facets;
+    d["facet_counts"] = counts;
+    d["measured"] = proportions(gem.measured);
+    d["closed_form"] = proportions(closed_form_proportions(cut));
+    d["cut"] = cut_dict(cut);
+    d["girdle_description"] = girdle_description(cut);
+    return d;
+}
+
+}  // namespace
+
+void bind_gem(py::module_& m) {
+    m.def("brilliant_presets", &brilliant_preset_names, "Named brilliant-cut presets.");
+    m.def("_cut_brilliant", &cut_brilliant, py::arg("preset"), py::arg("params"));
+}
+
+}  // namespace refract::python

@@ -1,0 +1,386 @@
+// refract._refract: the native part of the Python module `refract` (python/refract/ is the
+// package around it). Scenes, rendering and ray trees here; the optics laws and materials
+// in optics.cpp, the brilliant cut in gem.cpp, the experiments in experiments.cpp. Every
+// law and check is core's: these functions only convert between Python and C++.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/render.h"
+#include "core/scene_json.h"
+#include "core/trace_record.h"
+#include "geometry/error.h"
+#include "python/src/bindings.h"
+
+namespace refract::python {
+
+Vec3 to_vec3(const py::handle& o, const char* what) {
+    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(o);
+    } catch (const py::error_already_set&) {
+    }
+    if (!a || a.ndim() != 1 || a.shape(0) != 3) {
+        PyErr_Clear();
+        throw InputError(std::string(what) + ": must be three numbers");
+    }
+    return {a.at(0), a.at(1), a.at(2)};
+}
+
+py::array_t<double> array3(const Vec3& v) {
+    py::array_t<double> a(3);
+    auto m = a.mutable_unchecked<1>();
+    for (int k = 0; k < 3; ++k) m(k) = v[k];
+    return a;
+}
+
+namespace {
+
+// ---- Python values to JSON, for the scene reader --------------------------------------
+// Numbers stay doubles as Python gives them (NaN and infinities too, so that the scene
+// reader, not this converter, names the field); NumPy scalars and arrays are accepted.
+// Nesting deeper than any scene needs is refused (a Python error, not a C++ stack overflow).
+constexpr int kMaxDepth = 64;
+
+nlohmann::json to_json(const py::handle& o, const std::string& path, const std::string& source, int depth = 0) {
+    if (depth > kMaxDepth)
+        throw InputError(source + ": " + path + ": nested more than " + std::to_string(kMaxDepth) + " levels deep");
+    if (o.is_none()) return nullptr;
+    if (PyBool_Check(o.ptr())) return o.cast<bool>();
+    if (PyLong_Check(o.ptr())) {
+        int overflow = 0;
+        const long long v = PyLong_AsLongLongAndOverflow(o.ptr(), &overflow);
+        if (overflow) return PyLong_AsDouble(o.ptr());
+        return v;
+    }
+    if (PyFloat_Check(o.ptr())) return PyFloat_AS_DOUBLE(o.ptr());
+    if (PyUnicode_Check(o.ptr())) return o.cast<std::string>();
+    if (PyDict_Check(o.ptr())) {
+        nlohmann::json j = nlohmann::json::object();
+        for (const auto& kv : py::reinterpret_borrow<py::dict>(o)) {
+            if (!PyUnicode_Check(kv.first.ptr()))
+                throw InputError(source + ": " + (path.empty() ? "/" : path) + ": keys must be strings, not " +
+                                 std::string(py::str(py::repr(kv.first))));
+            const std::string key = kv.first.cast<std::string>();
+            j[key] = to_json(kv.second, path + "/" + key, source, depth + 1);
+        }
+        return j;
+    }
+    if (PyList_Check(o.ptr()) || PyTuple_Check(o.ptr())) {
+        nlohmann::json j = nlohmann::json::array();
+        size_t k = 0;
+        for (const auto& v : py::reinterpret_borrow<py::sequence>(o))
+            j.push_back(to_json(v, path + "/" + std::to_string(k++), source, depth + 1));
+        return j;
+    }
+    if (py::isinstance<py::array>(o) || py::hasattr(o, "tolist")) return to_json(o.attr("tolist")(), path, source, depth + 1);
+    if (PyIndex_Check(o.ptr()))
+        return to_json(py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr())), path, source, depth + 1);
+    if (PyNumber_Check(o.ptr()))
+        return to_json(py::reinterpret_steal<py::object>(PyNumber_Float(o.ptr())), path, source, depth + 1);
+    throw InputError(source + ": " + (path.empty() ? "/" : path) + ": cannot be written in JSON (a " +
+                     std::string(py::str(o.get_type().attr("__name__"))) + ")");
+}
+
+using ScenePtr = std::shared_ptr<const Scene>;
+
+ScenePtr scene_from_text(const std::string& text, const std::string& source) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {  // the file reader's wording
+        std::string what = e.what();
+        auto pos = what.find("] ");
+        throw InputError(source + ": malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
+    }
+    return std::make_shared<Scene>(parse_scene(j, source));
+}
+
+// ---- Rendering --------------------------------------------------------------------------
+
+py::dict stats_dict(const RenderStats& s) {
+    py::dict d;
+    d["primary_rays"] = s.primary_rays;
+    d["segments"] = s.segments;
+    d["shadow_rays"] = s.shadow_rays;
+    d["tree_nodes"] = s.tree_nodes;
+    d["pruned"] = s.pruned;
+    d["depth_limited"] = s.depth_limited;
+    d["lost_depth"] = s.lost_depth;
+    d["lost_limits"] = s.lost_limits;
+    d["lost_threshold"] = s.lost_threshold;
+    d["peak_list"] = s.peak_list;
+    d["spectral_splits"] = s.spectral_splits;
+    d["shortcut_tests"] = s.shortcut_tests;
+    d["shortcut_taken"] = s.shortcut_taken;
+    d["wavelength_segments"] = s.wavelength_segments;
+    d["photons"] = s.photons;
+    d["photon_segments"] = s.photon_segments;
+    d["deposits"] = s.deposits;
+    d["light_seconds"] = s.light_seconds;
+    d["seconds"] = s.seconds;
+    d["summary"] = s.summary();
+    d["lost_warning"] = s.lost_warning();
+    return d;
+}
+
+// A view of `data` (no copy) with the given shape; `owner` keeps the buffer alive.
+py::array_t<double> view(std::vector<double>& data, std::vector<py::ssize_t> shape, const py::capsule& owner) {
+    std::vector<py::ssize_t> strides(shape.size());
+    py::ssize_t step = sizeof(double);
+    for (size_t k = shape.size(); k-- > 0;) {
+        strides[k] = step;
+        step *= shape[k];
+    }
+    return py::array_t<double>(shape, strides, data.data(), owner);
+}
+
+// Renders on a worker thread with the GIL released; this thread polls Python's signal
+// handlers every 50 ms and cancels the render when one raises (Ctrl-C: KeyboardInterrupt).
+py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool lost_energy, std::uint64_t max_memory,
+                bool progress) {
+    RenderOptions opt;
+    opt.threads = threads;
+    opt.spectral_channels = spectral_channels;
+    opt.lost_energy = lost_energy;
+    opt.max_memory = max_memory;
+    opt.progress = progress;
+    std::atomic<bool> cancel{false};
+    opt.cancel = &cancel;
+    std::unique_ptr<RenderResult> result;
+    std::exception_ptr error;
+    bool interrupted = false;
+    {
+        py::gil_scoped_release nogil;
+        std::mutex mu;
+        std::condition_variable cv;
+        bool done = false;
+        std::thread worker([&] {
+            try {
+                result = std::make_unique<RenderResult>(refract::render(*scene, opt));
+            } catch (...) {
+                error = std::current_exception();
+            }
+            std::lock_guard<std::mutex> lock(mu);
+            done = true;
+            cv.notify_all();
+        });
+        std::unique_lock<std::mutex> lock(mu);
+        while (!cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) {
+            if (interrupted) continue;
+            lock.unlock();
+            {
+                py::gil_scoped_acquire gil;
+                if (PyErr_CheckSignals() != 0) {  // the handler's exception stays set
+                    interrupted = true;
+                    cancel = true;
+                }
+            }
+            lock.lock();
+        }
+        lock.unlock();
+        worker.join();
+    }
+    if (interrupted) throw py::error_already_set();
+    if (error) std::rethrow_exception(error);
+
+    RenderResult* r = result.release();
+    const py::capsule owner(r, [](void* p) { delete static_cast<RenderResult*>(p); });
+    const py::ssize_t W = r->image.width, H = r->image.height;
+    py::dict d;
+    d["rgb"] = view(r->image.rgb, {H, W, 3}, owner);
+    d["stats"] = stats_dict(r->stats);
+    if (!r->lost.empty()) d["lost"] = view(r->lost, {H, W, 3}, owner);
+    if (spectral_channels) {
+        d["wavelengths"] = view(r->wavelengths, {static_cast<py::ssize_t>(r->wavelengths.size())}, owner);
+        d["spectral"] = view(r->spectral, {H, W, static_cast<py::ssize_t>(r->wavelengths.size())}, owner);
+    }
+    if (r->polarisation) {
+        d["stokes"] = view(r->polarisation->stokes, {H, W, 4, 3}, owner);
+        d["dolp"] = view(r->polarisation->dolp, {H, W}, owner);
+        d["aolp"] = view(r->polarisation->aolp, {H, W}, owner);
+    }
+    return d;
+}
+
+// ---- Ray trees ----------------------------------------------------------------------------
+
+// Interned keys: one dict per node, built as fast as Python builds its own.
+struct NodeKeys {
+    py::object id, parent, depth, reflections, transmissions, origin, direction, weight, event, hit, length, point,
+        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength;
+    NodeKeys() {
+        auto k = [](const char* s) { return py::reinterpret_steal<py::object>(PyUnicode_InternFromString(s)); };
+        id = k("id"), parent = k("parent"), depth = k("depth"), reflections = k("reflections");
+        transmissions = k("transmissions"), origin = k("origin"), direction = k("direction"), weight = k("weight");
+        event = k("event"), hit = k("hit"), length = k("length"), point = k("point"), normal = k("normal");
+        object = k("object"), facet = k("facet"), facet_label = k("facet_label"), entering = k("entering");
+        eta = k("eta"), cos_i = k("cos_i"), cos_t = k("cos_t"), Rs = k("Rs"), Rp = k("Rp"), R = k("R");
+        light = k("light"), wavelength = k("wavelength");
+    }
+};
+
+const NodeKeys& keys() {
+    static const NodeKeys* k = new NodeKeys();  // never destroyed: Python may be gone at exit
+    return *k;
+}
+
+py::tuple trace_result(const TraceRecord& rec) {
+    const NodeKeys& k = keys();
+    py::list nodes(rec.segments.size());
+    const py::object none = py::none();
+    const py::object wl = rec.wavelength_nm > 0 ? py::object(py::float_(rec.wavelength_nm)) : none;
+    size_t n = 0;
+    for (const TraceSegment& s : rec.segments) {
+        py::dict d;
+        d[k.id] = s.id;
+        d[k.parent] = s.parent;
+        d[k.depth] = s.depth;
+        d[k.reflections] = s.reflections;
+        d[k.transmissions] = s.transmissions;
+        d[k.origin] = tuple3(s.ray.origin);
+        d[k.direction] = tuple3(s.ray.dir);
+        d[k.weight] = tuple3(s.weight);
+        d[k.event] = s.event;
+        d[k.hit] = s.hit;
+        d[k.length] = s.hit ? py::object(py::float_(s.length)) : none;
+        d[k.point] = s.hit ? py::object(tuple3(s.point)) : none;
+        d[k.normal] = s.hit ? py::object(tuple3(s.normal)) : none;
+        d[k.object] = s.hit ? py::object(py::str(s.object)) : none;
+        d[k.facet] = s.facet;
+        d[k.facet_label] = s.facet_label.empty() ? none : py::object(py::str(s.facet_label));
+        d[k.entering] = s.entering;
+        const bool dielectric = s.eta > 0;
+        d[k.eta] = dielectric ? py::object(py::float_(s.eta)) : none;
+        d[k.cos_i] = dielectric ? py::object(py::float_(s.cos_i)) : none;
+        d[k.cos_t] = dielectric ? py::object(py::float_(s.cos_t)) : none;
+        d[k.Rs] = dielectric ? py::object(py::float_(s.Rs)) : none;
+        d[k.Rp] = dielectric ? py::object(py::float_(s.Rp)) : none;
+        d[k.R] = s.hit && s.event != "diffuse" && s.event != "emissive" ? py::object(py::float_(s.R)) : none;
+        d[k.light] = tuple3(s.light);
+        d[k.wavelength] = wl;
+        PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), d.release().ptr());
+    }
+    return py::make_tuple(nodes, tuple3(rec.radiance), wl);
+}
+
+double check_wavelength(const py::handle& w) {
+    if (w.is_none()) return 0.0;
+    return w.cast<double>();
+}
+
+}  // namespace
+}  // namespace refract::python
+
+PYBIND11_MODULE(_refract, m) {
+    namespace py = pybind11;
+    using namespace refract;
+    using namespace refract::python;
+    m.doc() = "refract: the physics of refraction in rendering (native part; import refract)";
+
+    // Bad input: refract.InputError, a ValueError, with core's one-line message.
+    py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A validated scene (docs/scene-format.md)")
+        .def_property_readonly("source", [](const Scene& s) { return s.source; })
+        .def_property_readonly("width", [](const Scene& s) { return s.camera.width; })
+        .def_property_readonly("height", [](const Scene& s) { return s.camera.height; })
+        .def_property_readonly("objects",
+                               [](const Scene& s) {
+                                   std::vector<std::string> n;
+                                   for (const auto& o : s.objects) n.push_back(o.name);
+                                   return n;
+                               })
+        .def_property_readonly("spectral", [](const Scene& s) { return s.settings.spectral.enabled; })
+        .def_property_readonly("polarisation", [](const Scene& s) {
+            return s.settings.polarisation == PolarisationModel::Exact ? "exact" : "natural";
+        })
+        .def("__repr__", [](const Scene& s) {
+            return "<refract.Scene " + s.source + " " + std::to_string(s.camera.width) + "x" +
+                   std::to_string(s.camera.height) + ", " + std::to_string(s.objects.size()) + " objects>";
+        });
+
+    m.def("load_scene", [](const std::string& path) { return std::const_pointer_cast<Scene>(std::make_shared<Scene>(load_scene(path))); },
+          py::arg("path"), "Reads and validates a scene file (JSON).");
+    m.def("parse_scene_text",
+          [](const std::string& text, const std::string& source) {
+              return std::const_pointer_cast<Scene>(scene_from_text(text, source));
+          },
+          py::arg("text"), py::arg("source") = "scene", "A scene from JSON text; errors name `source`.");
+    m.def("parse_scene",
+          [](const py::dict& d, const std::string& source) {
+              return std::make_shared<Scene>(parse_scene(to_json(d, "", source), source));
+          },
+          py::arg("scene"), py::arg("source") = "scene",
+          "A scene from a dict in the scene file's format; errors name `source` and the field.");
+
+    m.def("render",
+          [](const std::shared_ptr<Scene>& s, int threads, bool spectral_channels, bool lost_energy,
+             std::uint64_t max_memory, bool progress) {
+              return render(s, threads, spectral_channels, lost_energy, max_memory, progress);
+          },
+          py::arg("scene"), py::arg("threads") = 0, py::arg("spectral_channels") = false, py::arg("lost_energy") = false,
+          py::arg("max_memory") = 0, py::arg("progress") = false);
+
+    m.def("trace_ray",
+          [](const Scene& s, const py::handle& origin, const py::handle& direction, const py::handle& wavelength) {
+              const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
+              const double nm = check_wavelength(wavelength);
+              TraceRecord rec;
+              {
+                  py::gil_scoped_release nogil;
+                  rec = trace_ray(s, Ray{o, d}, nm);
+              }
+              return trace_result(rec);
+          },
+          py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none());
+    m.def("trace_pixel",
+          [](const Scene& s, int i, int j, const py::handle& wavelength) {
+              const double nm = check_wavelength(wavelength);
+              TraceRecord rec;
+              {
+                  py::gil_scoped_release nogil;
+                  rec = trace_pixel(s, i, j, nm);
+              }
+              return trace_result(rec);
+          },
+          py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none());
+
+    m.def("write_image",
+          [](const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& rgb,
+             bool linear16) {
+              if (rgb.ndim() != 3 || rgb.shape(2) != 3 || rgb.shape(0) < 1 || rgb.shape(1) < 1)
+                  throw InputError(path + ": write_image needs an array of shape (height, width, 3)");
+              Image img(static_cast<int>(rgb.shape(1)), static_cast<int>(rgb.shape(0)));
+              std::copy(rgb.data(), rgb.data() + rgb.size(), img.rgb.begin());
+              py::gil_scoped_release nogil;
+              write_image(path, img, WriteOptions{linear16});
+          },
+          py::arg("path"), py::arg("rgb"), py::arg("linear16") = false,
+          "Writes linear RGB (height, width, 3) as `refract render` does: .exr/.hdr/.tif linear, .png/.jpg sRGB "
+          "(16-bit linear PNG with linear16); atomically.");
+    m.def("read_image",
+          [](const std::string& path) {
+              Image img;
+              {
+                  py::gil_scoped_release nogil;
+                  img = read_image(path);
+              }
+              py::array_t<double> a({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t(3)});
+              std::copy(img.rgb.begin(), img.rgb.end(), a.mutable_data());
+              return a;
+          },
+          py::arg("path"), "Reads an image as stored (linear for EXR), shape (height, width, 3).");
+
+    bind_optics(m);
+    bind_gem(m);
+    bind_experiments(m);
+}

@@ -1,0 +1,83 @@
+"""refract.trace: the whole ray tree of core/trace_record.h, node by node."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import refract
+from refract import optics
+
+
+def lone_sphere(ior=1.5):
+    """A glass sphere in a white sky, nothing else: every leaf is background of value 1."""
+    return refract.scene({
+        "camera": {"location": [0, 0, -5], "look_at": [0, 0, 0], "width": 8, "height": 8},
+        "background": [1, 1, 1],
+        "materials": {"glass": {"type": "dielectric", "ior": ior}},
+        "objects": [{"type": "sphere", "name": "ball", "center": [0, 0, 0], "radius": 1, "material": "glass"}],
+        "render": {"max_depth": 60, "threshold": 0},
+    })
+
+
+@pytest.mark.parametrize("b", [0.0, 0.3, 0.7, 0.95])
+def test_a_clear_glass_sphere_conserves_energy(b):
+    tree = refract.trace(lone_sphere(), [0, b, -5], [0, 0, 1])
+    leaves = [n for n in tree if n["event"] == "background"]
+    assert len(leaves) > 2
+    total = sum(n["weight"][0] for n in leaves)
+    assert total == pytest.approx(1.0, abs=1e-12)
+    assert tree.radiance[0] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_each_node_carries_the_fresnel_terms_of_its_hit():
+    tree = refract.trace(lone_sphere(), [0, 0.5, -5], [0, 0, 1])
+    first = tree[0]
+    assert first["parent"] == -1 and first["depth"] == 0
+    assert first["object"] == "ball" and first["entering"]
+    assert first["event"] == "reflection and refraction"
+    cos_i = -np.dot(first["direction"], first["normal"])
+    assert first["cos_i"] == pytest.approx(cos_i, rel=1e-14)
+    assert first["cos_i"] == pytest.approx(math.sqrt(1 - 0.25), rel=1e-12)  # impact parameter 0.5
+    f = optics.fresnel(first["cos_i"], 1.5)
+    assert (first["Rs"], first["Rp"], first["cos_t"]) == pytest.approx((f.Rs, f.Rp, f.cos_t), rel=1e-14)
+    assert first["eta"] == 1.5
+    assert np.allclose(first["point"], [0, 0.5, -math.sqrt(0.75)], atol=1e-12)
+
+
+def test_children_weights_are_the_parents_times_r_and_one_minus_r():
+    tree = refract.trace(lone_sphere(), [0, 0.4, -5], [0, 0, 1])
+    for node in tree[1:]:
+        parent = tree[node["parent"]]
+        R = parent["R"]
+        factor = R if node["reflections"] == parent["reflections"] + 1 else 1 - R
+        assert node["weight"][1] == pytest.approx(parent["weight"][1] * factor, rel=1e-13)
+        assert node["depth"] == parent["depth"] + 1
+
+
+def test_rays_past_the_critical_angle_inside_diamond_are_totally_reflected(source_dir):
+    s = refract.scene(os.path.join(source_dir, "scenes", "examples", "ohtsuka1998-diamond.json"))
+    tree = refract.trace_pixel(s, 320, 240, wavelength=550)
+    assert tree.wavelength == 550
+    tir = [n for n in tree if n["event"] == "total internal reflection"]
+    assert tir, "a ray into the 1998 diamond meets total internal reflection"
+    crit = optics.critical_angle(1 / refract.n("diamond", 550))
+    for n in tir:
+        assert n["Rs"] == n["Rp"] == 1.0 and n["cos_t"] == 0
+        assert math.acos(n["cos_i"]) > crit
+        assert n["facet_label"]
+    assert {n["object"] for n in tree if n["hit"]} <= {"diamond", "floor"}
+
+
+def test_bad_trace_arguments_raise_valueerror():
+    s = lone_sphere()
+    with pytest.raises(ValueError, match="nm is outside"):
+        refract.trace(s, [0, 0, -5], [0, 0, 1], wavelength=100)
+    with pytest.raises(ValueError, match="non-zero direction"):
+        refract.trace(s, [0, 0, -5], [0, 0, 0])
+    with pytest.raises(ValueError, match="direction: must be three numbers"):
+        refract.trace(s, [0, 0, -5], [0, 1])
+    with pytest.raises(ValueError, match="outside the 8x8 image"):
+        refract.trace_pixel(s, 9, 0)
+    with pytest.raises(ValueError, match="natural light"):
+        refract.trace(s, [0, 0, -5], [0, 0, 1], polarisation="exact")
