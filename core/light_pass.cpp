@@ -132,7 +132,8 @@ double illumination_elements(const Scene& scene) {
     return total;
 }
 
-std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads) {
+std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads,
+                                             const std::atomic<bool>* cancel) {
     const auto t0 = std::chrono::steady_clock::now();
     const LightPassSettings& lp = scene.settings.light_pass;
     const RenderSettings& rs = scene.settings;
@@ -196,6 +197,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, em.photons, kChunk),
                               [&](const tbb::blocked_range<std::uint64_t>& r) {
+                                  if (cancel && cancel->load(std::memory_order_relaxed)) return;
                                   RenderStats st;
                                   std::uint64_t dep = 0;
                                   if (exact) trace_photons(LightStokes{}, em, r.begin(), r.end(), st, dep);

@@ -13,6 +13,7 @@
 // light crossing an index-1 object lands as the direct irradiance c·cosθ would.
 // Deterministic for any thread count: photon p draws from its own stream
 // Rng(seed, light·objects + object, p), and deposits are summed in 64-bit fixed point.
+#include <atomic>
 #include <memory>
 
 #include "core/illumination_map.h"
@@ -21,7 +22,10 @@
 namespace refract {
 
 // Runs the light pass with scene.settings.light_pass on `threads` threads (0: all).
-std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads = 0);
+// `cancel`, when given and set, stops the pass early (its maps are then incomplete; the
+// caller discards them).
+std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads = 0,
+                                             const std::atomic<bool>* cancel = nullptr);
 
 // The elements its illumination maps would hold, computed without allocating.
 double illumination_elements(const Scene& scene);

@@ -258,7 +258,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
         ctx = SpectralContext::build(scene);
         if (scene.settings.light_pass.enabled) {
             if (!maps) {
-                maps = light_pass(scene, *ctx, threads);
+                maps = light_pass(scene, *ctx, threads, opt.cancel);
+                if (cancelled()) throw RenderCancelled();
                 light_stats.light_seconds = maps->seconds;
             }
             light_stats.photons = maps->photons;

@@ -580,4 +580,8 @@ Scene load_scene(const std::string& path) {
     return parse_scene(j, path);
 }
 
+PolarisationState parse_polarisation_state(const nlohmann::json& j, const std::string& source) {
+    return parse_polarisation_state(JsonReader(j, source, "/polarisation"), true);
+}
+
 }  // namespace refract

@@ -3,8 +3,11 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
+#include <type_traits>
 #include <tuple>
 
+#include "core/emitters.h"
 #include "core/optics.h"
 #include "core/ray_tree.h"
 #include "core/spectrum/wavelengths.h"
@@ -16,26 +19,30 @@ namespace {
 
 // Records every entry the walker pops; parents are found by the exact start point (a
 // child starts at its parent's hit point, and the FIFO list records parents first).
+template <class P>
 class RecordingEnds {
 public:
+    using Entry = TreeEntryT<P>;
+    using Walker = RayTreeWalkerT<P>;
+
     RecordingEnds(const SceneTracer& t, double nm, TraceRecord& r, RenderStats& st)
         : tracer_(t), nm_(nm), rec_(r), stats_(st) {}
 
-    void background(const TreeEntry& e) {
+    void background(const Entry& e) {
         TraceSegment& s = start(e);
         s.event = "background";
-        s.light = e.weight.cwiseProduct(tracer_.background(e.ray.dir));
+        s.light = s.weight.cwiseProduct(tracer_.background(e.ray.dir));
         rec_.radiance += s.light;
     }
 
-    void leaf(const TreeEntry& e, const SurfaceHit& h) {
+    void leaf(const Entry&, const SurfaceHit& h) {
         TraceSegment& s = rec_.segments[static_cast<size_t>(current_)];
         s.event = h.material->is<material::Emissive>() ? "emissive" : "diffuse";
-        s.light = e.weight.cwiseProduct(tracer_.local_light(h, stats_));
+        s.light = s.weight.cwiseProduct(tracer_.local_light(h, stats_));
         rec_.radiance += s.light;
     }
 
-    bool intercept(RayTreeWalker&, const TreeEntry& e, const SurfaceHit& h, RayTreeWalker::List&) {
+    bool intercept(Walker&, const Entry& e, const SurfaceHit& h, typename Walker::List&) {
         TraceSegment& s = start(e);
         current_ = s.id;
         s.hit = true;
@@ -72,18 +79,18 @@ public:
         return false;  // the walker expands the node as it always does
     }
 
-    double band_ior(const TreeEntry&, const SurfaceHit& h) const {
+    double band_ior(const Entry&, const SurfaceHit& h) const {
         const auto* d = h.material->dielectric();
         if (nm_ <= 0 || !d || !d->dispersion) return 0.0;
         return d->dispersion->n(nm_);
     }
-    double wavelength(const TreeEntry&) const { return nm_; }
+    double wavelength(const Entry&) const { return nm_; }
 
 private:
     using Key = std::tuple<double, double, double>;
     static Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
-    TraceSegment& start(const TreeEntry& e) {
+    TraceSegment& start(const Entry& e) {
         TraceSegment s;
         s.id = static_cast<int>(rec_.segments.size());
         const auto it = hits_.find(key(e.ray.origin));
@@ -93,6 +100,12 @@ private:
         s.transmissions = e.transmissions;
         s.ray = e.ray;
         s.weight = e.weight;
+        if constexpr (std::is_same_v<P, LightStokes>) {
+            s.polarised = true;
+            s.stokes = e.pol.S;
+            s.stokes_x = e.pol.x;
+            s.weight = e.weight * e.pol.S[0];
+        }
         rec_.segments.push_back(s);
         return rec_.segments.back();
     }
@@ -107,7 +120,8 @@ private:
 
 }  // namespace
 
-TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm) {
+TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_nm,
+                      const PolarisationState* polarisation) {
     const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
     if (wavelength_nm != 0 && !(wavelength_nm >= spectrum::kMinWavelength && wavelength_nm <= spectrum::kMaxWavelength))
         throw InputError(f + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
@@ -117,26 +131,40 @@ TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm) 
         throw InputError(f + ": the ray needs a finite origin and a finite, non-zero direction");
     TraceRecord rec;
     rec.wavelength_nm = wavelength_nm;
+    // A polarised trace needs the interfaces' Mueller matrices: the exact model.
+    std::optional<Scene> exact;
+    if (polarisation && scene_in.settings.polarisation != PolarisationModel::Exact) {
+        exact = scene_in;
+        exact->settings.polarisation = PolarisationModel::Exact;
+    }
+    const Scene& scene = exact ? *exact : scene_in;
     SceneTracer tracer(scene);
     RenderStats stats;
     TreeLimits limits = tree_limits(scene.settings);
     limits.max_reflections = scene.settings.spectral.max_reflections.value_or(TreeLimits::kUnlimited);
     limits.max_transmissions = scene.settings.spectral.max_transmissions.value_or(TreeLimits::kUnlimited);
-    RayTreeWalker walker(tracer, limits, stats);
-    RecordingEnds ends(tracer, wavelength_nm, rec, stats);
     // A unit direction is kept as it is (a camera ray traces as it renders).
     const Vec3 dir = std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : Vec3(ray.dir.normalized());
-    RayTreeWalker::List list{TreeEntry{Ray{ray.origin, dir}, Vec3(1, 1, 1)}};
-    walker.walk(list, ends);
+    const auto walk = [&](auto payload) {
+        using P = decltype(payload);
+        RayTreeWalkerT<P> walker(tracer, limits, stats);
+        RecordingEnds<P> ends(tracer, wavelength_nm, rec, stats);
+        typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{Ray{ray.origin, dir}, Vec3(1, 1, 1)}};
+        if constexpr (std::is_same_v<P, LightStokes>) list.front().pol = emitted(*polarisation, dir);
+        walker.walk(list, ends);
+    };
+    if (polarisation) walk(LightStokes{});
+    else walk(NaturalLight{});
     return rec;
 }
 
-TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm) {
+TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm,
+                        const PolarisationState* polarisation) {
     const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
     if (i < 0 || j < 0 || i >= scene.camera.width || j >= scene.camera.height)
         throw InputError(f + ": --pixel " + std::to_string(i) + " " + std::to_string(j) + " is outside the " +
                          std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + " image");
-    return trace_ray(scene, scene.camera.ray(i + 0.5, j + 0.5), wavelength_nm);
+    return trace_ray(scene, scene.camera.ray(i + 0.5, j + 0.5), wavelength_nm, polarisation);
 }
 
 }  // namespace refract

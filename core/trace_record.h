@@ -32,6 +32,13 @@ struct TraceSegment {
     // the node used; the relative index η = n_t / n_i.
     double cos_i = 0, cos_t = 0, Rs = 0, Rp = 0, R = 0, eta = 0;
     Vec3 light{0, 0, 0};  // what this segment brings to the root: weight × the light at its end (leaves)
+    // A polarised trace (trace_ray with a polarisation state): the Stokes vector of the
+    // light along the segment, as a fraction of the root's power (colour filters aside:
+    // `weight` is the colour weight times S0), in the frame x̂ = stokes_x (across the
+    // segment), ŷ = direction × x̂ (docs/polarisation.md).
+    bool polarised = false;
+    Eigen::Vector4d stokes = Eigen::Vector4d::Zero();
+    Vec3 stokes_x{0, 0, 0};
 };
 
 struct TraceRecord {
@@ -42,9 +49,14 @@ struct TraceRecord {
 
 // The tree of `ray` (at `wavelength_nm` when > 0: every dielectric with a dispersion
 // takes its index there). Throws InputError for an invalid scene or wavelength.
-TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm = 0);
+// With `polarisation`: the ray is light of that state travelling along it (a linear
+// state's angle measured from its reference as for a light), walked with exact
+// polarisation whatever the scene's model, each segment carrying its Stokes vector.
+TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm = 0,
+                      const PolarisationState* polarisation = nullptr);
 
 // The same for the centre of pixel (i, j).
-TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm = 0);
+TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm = 0,
+                        const PolarisationState* polarisation = nullptr);
 
 }  // namespace refract

@@ -3,9 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "core/integrators/spectral.h"
+#include "core/light_pass.h"
 #include "core/render.h"
 #include "core/scene_json.h"
 
@@ -40,4 +43,21 @@ TEST_CASE("an unset cancel flag leaves the image as it is", "[render]") {
     const RenderResult a = render(s, opt), b = render(s);
     CHECK(a.image.rgb == b.image.rgb);
     CHECK(a.stats.primary_rays == 24u * 16u);
+}
+
+TEST_CASE("a set cancel flag stops the light pass before its photons, and the render throws", "[render]") {
+    Scene s = load_scene(std::string(REFRACT_SOURCE_DIR) + "/scenes/examples/ohtsuka1998-diamond.json");
+    REQUIRE(s.settings.light_pass.enabled);
+    s.camera.width = 8;
+    s.camera.height = 6;
+    s.settings.light_pass.photons = 2000;
+    const SpectralContext ctx = SpectralContext::build(s);
+    std::atomic<bool> cancel{true};
+    CHECK(light_pass(s, ctx, 2, &cancel)->photons == 0);
+    cancel = false;
+    CHECK(light_pass(s, ctx, 2, &cancel)->photons == 2000);
+    cancel = true;
+    RenderOptions opt;
+    opt.cancel = &cancel;
+    CHECK_THROWS_AS(render(s, opt), RenderCancelled);
 }

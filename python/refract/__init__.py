@@ -93,8 +93,9 @@ class RayTree(list):
     direction, weight (cumulative attenuation), event ("background", "diffuse", "emissive",
     "mirror", "reflection and refraction", "reflection only", "total internal reflection"),
     hit, length, point, normal (incident side), object, facet, facet_label, entering, eta,
-    cos_i, cos_t, Rs, Rp, R, light (what the node brings to the root) and wavelength (nm,
-    None for an RGB ray). Fields that do not apply are None."""
+    cos_i, cos_t, Rs, Rp, R, light (what the node brings to the root), wavelength (nm,
+    None for an RGB ray), and for a polarised trace stokes and stokes_x. Fields that do not
+    apply are None."""
 
     def __init__(self, nodes, radiance, wavelength):
         super().__init__(nodes)
@@ -105,25 +106,24 @@ class RayTree(list):
         return "RayTree(%d nodes, radiance=%r)" % (len(self), self.radiance)
 
 
-def _check_polarisation(polarisation):
-    if polarisation not in (None, "natural"):
-        raise InputError("trace: polarisation %r: the ray-tree record is natural light (None or 'natural'); "
-                         "render a scene with render.polarisation 'exact' for Stokes images" % (polarisation,))
-
-
 def trace(scene_, origin, direction, wavelength=None, polarisation=None):
     """The whole tree of one ray, as `refract trace --ray` records it (core/trace_record.h).
 
     wavelength (nm): every dielectric with a dispersion takes its index there; None: an RGB ray
-    with each material's nominal index."""
-    _check_polarisation(polarisation)
-    return RayTree(*_refract.trace_ray(scene(scene_), origin, direction, wavelength))
+    with each material's nominal index.
+    polarisation: None or "natural" (natural light, the scene's own model); otherwise the ray is
+    light of that state travelling along it, walked with exact polarisation: a light's
+    "polarisation" as in a scene file, e.g. {"type": "linear", "angle": 30, "reference":
+    [0, 1, 0]}, {"type": "circular", "handedness": "right"} or "unpolarised". Each node then
+    has "stokes" (S0..S3, fractions of the ray's power, in the frame x = "stokes_x" across the
+    node's direction, y = direction x x; docs/polarisation.md), and "weight" is the colour
+    weight times S0."""
+    return RayTree(*_refract.trace_ray(scene(scene_), origin, direction, wavelength, polarisation))
 
 
 def trace_pixel(scene_, x, y, wavelength=None, polarisation=None):
-    """The tree of the ray through the centre of pixel (x, y)."""
-    _check_polarisation(polarisation)
-    return RayTree(*_refract.trace_pixel(scene(scene_), x, y, wavelength))
+    """The tree of the ray through the centre of pixel (x, y) (polarisation as in trace)."""
+    return RayTree(*_refract.trace_pixel(scene(scene_), x, y, wavelength, polarisation))
 
 
 def n(name, wavelength_nm):

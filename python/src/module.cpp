@@ -216,7 +216,7 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
 // Interned keys: one dict per node, built as fast as Python builds its own.
 struct NodeKeys {
     py::object id, parent, depth, reflections, transmissions, origin, direction, weight, event, hit, length, point,
-        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength;
+        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength, stokes, stokes_x;
     NodeKeys() {
         auto k = [](const char* s) { return py::reinterpret_steal<py::object>(PyUnicode_InternFromString(s)); };
         id = k("id"), parent = k("parent"), depth = k("depth"), reflections = k("reflections");
@@ -224,7 +224,7 @@ struct NodeKeys {
         event = k("event"), hit = k("hit"), length = k("length"), point = k("point"), normal = k("normal");
         object = k("object"), facet = k("facet"), facet_label = k("facet_label"), entering = k("entering");
         eta = k("eta"), cos_i = k("cos_i"), cos_t = k("cos_t"), Rs = k("Rs"), Rp = k("Rp"), R = k("R");
-        light = k("light"), wavelength = k("wavelength");
+        light = k("light"), wavelength = k("wavelength"), stokes = k("stokes"), stokes_x = k("stokes_x");
     }
 };
 
@@ -267,6 +267,8 @@ py::tuple trace_result(const TraceRecord& rec) {
         d[k.R] = s.hit && s.event != "diffuse" && s.event != "emissive" ? py::object(py::float_(s.R)) : none;
         d[k.light] = tuple3(s.light);
         d[k.wavelength] = wl;
+        d[k.stokes] = s.polarised ? py::object(py::make_tuple(s.stokes[0], s.stokes[1], s.stokes[2], s.stokes[3])) : none;
+        d[k.stokes_x] = s.polarised ? py::object(tuple3(s.stokes_x)) : none;
         PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), d.release().ptr());
     }
     return py::make_tuple(nodes, tuple3(rec.radiance), wl);
@@ -275,6 +277,21 @@ py::tuple trace_result(const TraceRecord& rec) {
 double check_wavelength(const py::handle& w) {
     if (w.is_none()) return 0.0;
     return w.cast<double>();
+}
+
+// None or "natural": natural light; a dict in the scene file's form of a light's
+// "polarisation" (or its type alone, as a string): that state.
+std::optional<PolarisationState> check_polarisation(const py::handle& p) {
+    if (p.is_none()) return std::nullopt;
+    if (py::isinstance<py::str>(p)) {
+        const std::string t = p.cast<std::string>();
+        if (t == "natural") return std::nullopt;
+        return parse_polarisation_state(nlohmann::json{{"type", t}}, "trace");
+    }
+    if (!py::isinstance<py::dict>(p))
+        throw InputError("trace: polarisation must be None, \"natural\", a type name or a dict such as "
+                         "{\"type\": \"linear\", \"angle\": 30}");
+    return parse_polarisation_state(to_json(p.cast<py::dict>(), "", "trace"), "trace");
 }
 
 }  // namespace
@@ -331,28 +348,33 @@ PYBIND11_MODULE(_refract, m) {
           py::arg("max_memory") = 0, py::arg("progress") = false);
 
     m.def("trace_ray",
-          [](const Scene& s, const py::handle& origin, const py::handle& direction, const py::handle& wavelength) {
+          [](const Scene& s, const py::handle& origin, const py::handle& direction, const py::handle& wavelength,
+             const py::handle& polarisation) {
               const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
               const double nm = check_wavelength(wavelength);
+              const std::optional<PolarisationState> pol = check_polarisation(polarisation);
               TraceRecord rec;
               {
                   py::gil_scoped_release nogil;
-                  rec = trace_ray(s, Ray{o, d}, nm);
+                  rec = trace_ray(s, Ray{o, d}, nm, pol ? &*pol : nullptr);
               }
               return trace_result(rec);
           },
-          py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none());
+          py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none(),
+          py::arg("polarisation") = py::none());
     m.def("trace_pixel",
-          [](const Scene& s, int i, int j, const py::handle& wavelength) {
+          [](const Scene& s, int i, int j, const py::handle& wavelength, const py::handle& polarisation) {
               const double nm = check_wavelength(wavelength);
+              const std::optional<PolarisationState> pol = check_polarisation(polarisation);
               TraceRecord rec;
               {
                   py::gil_scoped_release nogil;
-                  rec = trace_pixel(s, i, j, nm);
+                  rec = trace_pixel(s, i, j, nm, pol ? &*pol : nullptr);
               }
               return trace_result(rec);
           },
-          py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none());
+          py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none(),
+          py::arg("polarisation") = py::none());
 
     m.def("write_image",
           [](const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& rgb,

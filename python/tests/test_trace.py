@@ -79,5 +79,50 @@ def test_bad_trace_arguments_raise_valueerror():
         refract.trace(s, [0, 0, -5], [0, 1])
     with pytest.raises(ValueError, match="outside the 8x8 image"):
         refract.trace_pixel(s, 9, 0)
-    with pytest.raises(ValueError, match="natural light"):
+    with pytest.raises(ValueError, match="unknown polarisation 'exact'"):
         refract.trace(s, [0, 0, -5], [0, 0, 1], polarisation="exact")
+    with pytest.raises(ValueError, match="angle"):
+        refract.trace(s, [0, 0, -5], [0, 0, 1], polarisation={"type": "circular", "angle": 10})
+
+
+def brewster_impact(n=1.5):
+    """The height at which a ray along +z meets the unit sphere at Brewster's angle."""
+    return math.sin(optics.brewster_angle(n))
+
+
+def first_reflection(tree):
+    return next(n for n in tree if n["parent"] == 0 and n["reflections"] == 1 and n["transmissions"] == 0)
+
+
+def test_unpolarised_light_reflected_at_brewsters_angle_is_fully_polarised():
+    b = brewster_impact()
+    tree = refract.trace(lone_sphere(), [0, b, -5], [0, 0, 1], polarisation="unpolarised")
+    assert tree[0]["stokes"] == pytest.approx((1, 0, 0, 0), abs=1e-15)
+    node = first_reflection(tree)
+    f = optics.fresnel(math.cos(optics.brewster_angle(1.5)), 1.5)
+    S = node["stokes"]
+    assert S[0] == pytest.approx((f.Rs + f.Rp) / 2, abs=1e-12)
+    assert math.hypot(S[1], S[2]) / S[0] == pytest.approx(1.0, abs=1e-9)  # degree of linear polarisation
+    assert node["weight"][0] == pytest.approx(S[0], abs=1e-15)
+    assert node["stokes_x"] is not None and tree[0]["stokes_x"] is not None
+
+
+def test_p_polarised_light_is_not_reflected_at_brewsters_angle_and_s_light_is_by_rs():
+    b = brewster_impact()
+    f = optics.fresnel(math.cos(optics.brewster_angle(1.5)), 1.5)
+    # The plane of incidence holds the beam (z) and the height (y): E along y is p.
+    p = first_reflection(refract.trace(lone_sphere(), [0, b, -5], [0, 0, 1],
+                                       polarisation={"type": "linear", "angle": 0, "reference": [0, 1, 0]}))
+    s = first_reflection(refract.trace(lone_sphere(), [0, b, -5], [0, 0, 1],
+                                       polarisation={"type": "linear", "angle": 90, "reference": [0, 1, 0]}))
+    assert p["stokes"][0] < 1e-15
+    assert s["stokes"][0] == pytest.approx(f.Rs, abs=1e-12)
+
+
+@pytest.mark.parametrize("state", ["unpolarised", {"type": "linear", "angle": 30}, {"type": "circular"}])
+def test_a_polarised_ray_through_a_clear_sphere_conserves_energy(state):
+    tree = refract.trace(lone_sphere(), [0, 0.6, -5], [0, 0, 1], polarisation=state)
+    leaves = [n for n in tree if n["event"] == "background"]
+    assert sum(n["stokes"][0] for n in leaves) == pytest.approx(1.0, abs=1e-12)
+    assert all(n["stokes"][0] >= -1e-15 and math.sqrt(sum(x * x for x in n["stokes"][1:])) <= n["stokes"][0] + 1e-12
+               for n in tree)
