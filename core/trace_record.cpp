@@ -122,7 +122,7 @@ private:
 
 TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_nm,
                       const PolarisationState* polarisation) {
-    const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
+    const std::string f = scene_in.source.empty() ? std::string("scene") : scene_in.source;
     if (wavelength_nm != 0 && !(wavelength_nm >= spectrum::kMinWavelength && wavelength_nm <= spectrum::kMaxWavelength))
         throw InputError(f + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
                          std::to_string(static_cast<int>(spectrum::kMinWavelength)) + ", " +
