@@ -19,6 +19,7 @@
 #include "geometry/facet_graph.h"
 #include "geometry/gem/brilliant.h"
 #include "geometry/shapes.h"
+#include "tests/hit_bits.h"
 
 using namespace refract;
 
@@ -26,19 +27,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::uint64_t bits(double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-}
-
-bool identical(const std::optional<Hit>& a, const std::optional<Hit>& b) {
-    if (a.has_value() != b.has_value()) return false;
-    if (!a) return true;
-    for (int i = 0; i < 3; ++i)
-        if (bits(a->point[i]) != bits(b->point[i]) || bits(a->normal[i]) != bits(b->normal[i])) return false;
-    return bits(a->t) == bits(b->t) && a->facet == b->facet;
-}
+using test::bits;
+using test::identical;
 
 Vec3 random_direction(std::mt19937_64& rng) {
     std::normal_distribution<double> n(0, 1);

@@ -21,6 +21,7 @@
 #include "geometry/gem/brilliant.h"
 #include "geometry/plane_set.h"
 #include "geometry/shapes.h"
+#include "tests/hit_bits.h"
 
 using namespace refract;
 
@@ -28,19 +29,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::uint64_t bits(double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-}
-
-bool identical(const std::optional<Hit>& a, const std::optional<Hit>& b) {
-    if (a.has_value() != b.has_value()) return false;
-    if (!a) return true;
-    for (int i = 0; i < 3; ++i)
-        if (bits(a->point[i]) != bits(b->point[i]) || bits(a->normal[i]) != bits(b->normal[i])) return false;
-    return bits(a->t) == bits(b->t) && a->facet == b->facet;
-}
+using test::bits;
+using test::identical;
 
 std::string show(double x) {
     std::ostringstream o;
