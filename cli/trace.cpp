@@ -1,7 +1,8 @@
-// refract trace SCENE.json (--pixel X Y | --ray OX OY OZ DX DY DZ) [--wavelength NM] [-o FILE]
+// refract trace SCENE.json (--pixel X Y | --ray OX OY OZ DX DY DZ) [--wavelength NM] [--polarisation STATE] [-o FILE]
 // Every segment of one ray's tree as JSON (core/trace_record.h).
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,7 @@ struct TraceArgs {
     std::vector<int> pixel;
     std::vector<double> ray;
     double wavelength = 0;
+    std::string polarisation;
 };
 
 nlohmann::json vec(const refract::Vec3& v) { return {v.x(), v.y(), v.z()}; }
@@ -47,6 +49,10 @@ nlohmann::json to_json(const refract::TraceRecord& r, const std::string& scene) 
             }
             if (s.event != "diffuse" && s.event != "emissive") j["R"] = s.R;
         }
+        if (s.polarised) {
+            j["stokes"] = {s.stokes[0], s.stokes[1], s.stokes[2], s.stokes[3]};
+            j["stokes_x"] = vec(s.stokes_x);
+        }
         segs.push_back(j);
     }
     json out = {{"scene", scene}, {"segments", segs}, {"radiance", vec(r.radiance)}};
@@ -62,15 +68,34 @@ refract::cli::Registrar reg{15, [](CLI::App& app) {
     auto* ry = sub->add_option("--ray", a->ray, "Ray origin and direction: OX OY OZ DX DY DZ")->expected(6);
     px->excludes(ry);
     sub->add_option("--wavelength", a->wavelength, "Trace at one wavelength in nm (dispersive materials take their index there)");
+    sub->add_option("--polarisation", a->polarisation,
+                    "Trace the ray as light of this state, with exact polarisation and each segment's Stokes vector: "
+                    "unpolarised, linear, circular, or a light's polarisation object as JSON, e.g. "
+                    "'{\"type\": \"linear\", \"angle\": 30}' (docs/scene-format.md)");
     sub->add_option("-o,--output", a->output, "Write the JSON here instead of standard output");
     sub->callback([a] {
         using namespace refract;
         if (a->pixel.empty() && a->ray.empty()) throw InputError("trace: give --pixel X Y or --ray OX OY OZ DX DY DZ");
+        std::optional<PolarisationState> pol;
+        if (!a->polarisation.empty()) {
+            nlohmann::json j;
+            if (a->polarisation.front() == '{') {
+                try {
+                    j = nlohmann::json::parse(a->polarisation);
+                } catch (const nlohmann::json::exception&) {
+                    throw InputError("trace: --polarisation: not a JSON object: " + a->polarisation);
+                }
+            } else {
+                j = {{"type", a->polarisation}};
+            }
+            pol = parse_polarisation_state(j, "--polarisation");
+        }
         const Scene scene = load_scene(a->scene);
+        const PolarisationState* p = pol ? &*pol : nullptr;
         const TraceRecord r = a->pixel.empty()
                                   ? trace_ray(scene, Ray{Vec3(a->ray[0], a->ray[1], a->ray[2]), Vec3(a->ray[3], a->ray[4], a->ray[5])},
-                                              a->wavelength)
-                                  : trace_pixel(scene, a->pixel[0], a->pixel[1], a->wavelength);
+                                              a->wavelength, p)
+                                  : trace_pixel(scene, a->pixel[0], a->pixel[1], a->wavelength, p);
         const std::string text = to_json(r, a->scene).dump(1) + "\n";
         if (a->output.empty()) std::cout << text;
         else validation::write_text_file(a->output, text);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <type_traits>
 
 #include <tbb/blocked_range.h>
@@ -239,7 +238,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
     SceneTracer tracer(scene);
     const TreeLimits limits = ctx.limits(scene.settings);
     tbb::task_arena arena(nthreads);
-    constexpr std::uint64_t kChunk = 4096, kBunch = 8;
+    constexpr std::uint64_t kChunk = 4096;
     // Wavelengths in groups whose bins fit a thread's tally (far_field_group); a photon is
     // drawn once for its group and its first segment traced once, then walked at each of
     // the group's wavelengths.
@@ -259,12 +258,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
         for (const Emitter& em : emitters) {
             const PolarisationState& pol = emitter_polarisation(scene, em);
             arena.execute([&] {
-                // Photons in fixed bunches of kBunch (by index, whatever the threads): a
-                // bunch's photons are walked together at each wavelength, on one list, so
-                // that their independent trees interleave; the weight dropped is rounded
-                // per bunch and wavelength.
-                const std::uint64_t bunches = (em.photons + kBunch - 1) / kBunch;
-                tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, bunches, kChunk / kBunch),
+                tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, em.photons, kChunk),
                                   [&](const tbb::blocked_range<std::uint64_t>& range) {
                     Tally& tally = tallies.local();
                     RenderStats st;
@@ -273,26 +267,21 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                         RayTreeWalkerT<P> walker(tracer, limits, st);
                         FarFieldEnds<P> ends{geo, ctx, tally, scale, r.classes, r.components, r.bins, w0, per_wavelength};
                         typename RayTreeWalkerT<P>::List list;  // one list for the chunk's photons
-                        TreeEntryT<P> start[kBunch];
-                        std::optional<SurfaceHit> first[kBunch];
-                        for (std::uint64_t bunch = range.begin(); bunch != range.end(); ++bunch) {
-                            const std::uint64_t p0 = bunch * kBunch, n = std::min<std::uint64_t>(kBunch, em.photons - p0);
-                            for (std::uint64_t i = 0; i < n; ++i) {
-                                const auto [ray, power] = sample_photon(em, settings.seed + w0 * 0x9E3779B9ull, p0 + i);
-                                start[i] = TreeEntryT<P>{ray, Vec3::Constant(power.mean())};
-                                if constexpr (std::is_same_v<P, LightStokes>) start[i].pol = emitted(pol, ray.dir);
-                                first[i] = tracer.intersect(ray, st);
-                            }
+                        for (std::uint64_t p = range.begin(); p != range.end(); ++p) {
+                            const auto [ray, power] = sample_photon(em, settings.seed + w0 * 0x9E3779B9ull, p);
+                            TreeEntryT<P> e{ray, Vec3::Constant(power.mean())};
+                            if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(pol, ray.dir);
+                            const auto first = tracer.intersect(ray, st);  // the same at every wavelength
                             for (size_t w = w0; w < w0 + gw; ++w) {
-                                const double lost0 = st.lost_depth + st.lost_limits + st.lost_threshold;
-                                for (std::uint64_t i = 0; i < n; ++i) {
-                                    TreeEntryT<P> e = start[i];
-                                    e.band = static_cast<std::int16_t>(w);
-                                    if (first[i]) walker.arrive(e, *first[i], list, ends);
-                                    else ends.background(e);
+                                e.band = static_cast<std::int16_t>(w);
+                                if (!first) {
+                                    ends.background(e);
+                                    continue;
                                 }
+                                const double lost0 = st.lost_depth + st.lost_limits + st.lost_threshold;
+                                walker.arrive(e, *first, list, ends);
                                 walker.walk(list, ends);
-                                // The weight the walker dropped (the photons' power rides on it).
+                                // The weight the walker dropped (the photon's power rides on it).
                                 const double lost = st.lost_depth + st.lost_limits + st.lost_threshold - lost0;
                                 tally.dropped[w - w0] += std::llround(lost * scale);
                             }

@@ -96,20 +96,21 @@ FacetGraph::FacetGraph(const ConvexPolyhedron& c) {
         double m = 1;
         for (const Plane& p : c.planes) m = std::max(m, std::abs(p.offset));
         const double h = 1e4 * m;
-        Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
+        std::vector<Vec3> corners;
         for (size_t g = 0; g < n; ++g) {
             const Polygon poly = facet_polygon(c, g, Vec3::Zero(), h, 1e-7 * h);
             if (poly.unbounded) return;
-            for (const Vec3& v : poly.corners) {
-                lo = lo.cwiseMin(v);
-                hi = hi.cwiseMax(v);
-            }
+            corners.insert(corners.end(), poly.corners.begin(), poly.corners.end());
         }
-        if (!(lo.x() <= hi.x())) return;
+        if (corners.empty()) return;
+        Vec3 lo = corners.front(), hi = corners.front();
+        for (const Vec3& v : corners) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
         centre = 0.5 * (lo + hi);
         R = 0;
-        for (size_t g = 0; g < n; ++g)
-            for (const Vec3& v : facet_polygon(c, g, Vec3::Zero(), h, 1e-7 * h).corners) R = std::max(R, (v - centre).norm());
+        for (const Vec3& v : corners) R = std::max(R, (v - centre).norm());
         R = R * (1 + 1e-6) + 1e-12;
     }
     const double scale = centre.norm() + R;

@@ -207,3 +207,27 @@ TEST_CASE("An unwritable experiment or far-field output directory is bad input (
     CHECK(e.err.find("file/ob") != std::string::npos);
     fs::remove_all(dir);
 }
+
+TEST_CASE("refract trace --polarisation: each segment's Stokes vector written; a bad state exits 2 with one line "
+          "and writes nothing",
+          "[cli][errors]") {
+    const fs::path dir = fresh_dir("tracepol");
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
+        "materials": {"glass": {"type": "dielectric", "ior": 1.5}},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "glass"}]})";
+    const std::string scene = (dir / "s.json").string(), out = (dir / "t.json").string();
+    const std::string ray = " --ray 0 0.6 -4 0 0 1 -o " + out;
+    CHECK(run("trace " + scene + ray + " --polarisation '{\"type\": \"linear\", \"angle\": 30}'", dir).code == 0);
+    std::ifstream f(out);
+    std::stringstream text;
+    text << f.rdbuf();
+    CHECK(text.str().find("\"stokes\"") != std::string::npos);
+    CHECK(text.str().find("\"stokes_x\"") != std::string::npos);
+    fs::remove(out);
+    check_refused(run("trace " + scene + ray + " --polarisation '{\"type\": ', dir), "--polarisation");
+    check_refused(run("trace " + scene + ray + " --polarisation sideways", dir), "unknown polarisation 'sideways'");
+    check_refused(run("trace " + scene + ray + " --polarisation '{\"type\": \"linear\", \"angle\": 1e999}'", dir),
+                  "--polarisation");
+    CHECK_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+}
