@@ -224,7 +224,7 @@ TEST_CASE("refract trace --polarisation: each segment's Stokes vector written; a
     CHECK(text.str().find("\"stokes\"") != std::string::npos);
     CHECK(text.str().find("\"stokes_x\"") != std::string::npos);
     fs::remove(out);
-    check_refused(run("trace " + scene + ray + " --polarisation '{\"type\": ', dir), "--polarisation");
+    check_refused(run("trace " + scene + ray + " --polarisation '{\"type\": '", dir), "--polarisation");
     check_refused(run("trace " + scene + ray + " --polarisation sideways", dir), "unknown polarisation 'sideways'");
     check_refused(run("trace " + scene + ray + " --polarisation '{\"type\": \"linear\", \"angle\": 1e999}'", dir),
                   "--polarisation");
