@@ -51,7 +51,7 @@ TEST_CASE("Atomic write: a link planted at the target is replaced, never followe
     fs::remove_all(d);
 }
 
-TEST_CASE("Atomic write: errors name the path and leave no temporary; an uncommitted TempFile is removed",
+TEST_CASE("Atomic write: errors name the path and leave no temporary — an uncommitted TempFile is removed",
           "[files][limits]") {
     const fs::path d = fresh_dir("errors");
     CHECK_THROWS_WITH(write_file_atomic((d / "no" / "x.txt").string(), "x"), Catch::Contains("no/x.txt"));

@@ -71,7 +71,7 @@ std::string read_text(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("Yasuda Fig. 4 data: Rs, Rp, R of n = 1.5 are the exact Fresnel terms; R(0) = 0.04, Rp(Brewster) = 0",
+TEST_CASE("Yasuda Fig. 4 data: Rs, Rp, R of n = 1.5 are the exact Fresnel terms — R(0) = 0.04, Rp(Brewster) = 0",
           "[experiments][yasuda1984]") {
     const Csv t = read_csv((quick_run("yasuda1984") / "fig4.csv").string());
     REQUIRE(t.header == std::vector<std::string>{"angle_deg", "Rs", "Rp", "R"});
@@ -95,7 +95,7 @@ TEST_CASE("Yasuda Fig. 4 data: Rs, Rp, R of n = 1.5 are the exact Fresnel terms;
     CHECK_THAT(optics::fresnel(std::cos(optics::brewster_angle(1.5)), 1.5)->Rp, WithinAbs(0, 1e-30));
 }
 
-TEST_CASE("Yasuda Fig. 7 data: T = 1 - R; T = 0 at the critical angle; for n = 10 T peaks above 70 degrees",
+TEST_CASE("Yasuda Fig. 7 data: T = 1 - R — T = 0 at the critical angle — for n = 10 T peaks above 70 degrees",
           "[experiments][yasuda1984]") {
     const Csv t = read_csv((quick_run("yasuda1984") / "fig7.csv").string());
     REQUIRE(t.header == std::vector<std::string>{"n", "angle_deg", "T"});
@@ -140,7 +140,7 @@ TEST_CASE("Yasuda driver (quick) writes its CSV, figures, renders, scenes and su
     CHECK(read_text(d / "summary.md").find("## Cost of Fresnel reflectance") != std::string::npos);
 }
 
-TEST_CASE("Yasuda memory study: the stored tree outgrows the FIFO list; the threshold keeps the list small",
+TEST_CASE("Yasuda memory study: the stored tree outgrows the FIFO list — the threshold keeps the list small",
           "[experiments][yasuda1984]") {
     const Csv t = read_csv((quick_run("yasuda1984") / "memory.csv").string());
     REQUIRE(t.rows.size() >= 5);

@@ -49,7 +49,7 @@ TEST_CASE("Jones to Mueller: diag(a, b) on Stokes vectors equals diag(a, b) on f
     for (int i = 0; i < 4; ++i) CHECK_THAT(polar::circular(1.0, +1)[i], WithinAbs(want[i], 1e-15));
 }
 
-TEST_CASE("Fresnel amplitudes: rs², rp² are Fresnel's Rs, Rp; unit modulus on TIR", "[polarisation]") {
+TEST_CASE("Fresnel amplitudes: rs², rp² are Fresnel's Rs, Rp — unit modulus on TIR", "[polarisation]") {
     for (double eta : {1.5, 2.417, 1 / 1.5, 1 / 2.417}) {
         for (double a = 0; a <= 90.0; a += 0.25) {
             const double ci = std::cos(deg(a));

@@ -112,7 +112,7 @@ TEST_CASE("Per-wavelength Fresnel uses the band's index (physical) and the nomin
           Approx(optics::fresnel_reflectance(cos_i, static_cast<float>(glass->ior))).epsilon(1e-14));
 }
 
-TEST_CASE("Dispersion: ior absent takes the model's nominal index; an explicit ior must agree with it", "[spectral]") {
+TEST_CASE("Dispersion: ior absent takes the model's nominal index — an explicit ior must agree with it", "[spectral]") {
     const auto j = nlohmann::json::parse(R"({"camera": {}, "objects": [],
         "materials": {"a": {"type": "dielectric", "dispersion": "diamond"},
                       "b": {"type": "dielectric", "ior": 2.4175, "dispersion": "diamond"}}})");
@@ -194,7 +194,7 @@ TEST_CASE("Light pass and spectral render are identical for 1 and 2 threads", "[
     CHECK(a.stats.deposits > 0);
 }
 
-TEST_CASE("Ohtsuka driver (quick) writes images, tables and studies; the shortcut pays", "[spectral][experiments]") {
+TEST_CASE("Ohtsuka driver (quick) writes images, tables and studies — the shortcut pays", "[spectral][experiments]") {
     namespace fs = std::filesystem;
     const fs::path d = fs::temp_directory_path() / ("refract-ohtsuka-" + std::to_string(::getpid()));
     fs::remove_all(d);
