@@ -168,7 +168,7 @@ TEST_CASE("The image module is loaded only for images: --help and trace run with
     fs::remove_all(dir);
 }
 
-TEST_CASE("Error contract: a field name's escape and newline are printed as \\xNN on one line — a missing povray "
+TEST_CASE("Error contract: a field name's escape and newline are printed as hex escapes on one line — a missing povray "
           "is bad input (exit 2) in validate and bench",
           "[cli][errors][limits]") {
     const fs::path dir = fresh_dir("contract");
