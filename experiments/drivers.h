@@ -2,6 +2,7 @@
 // One driver per paper and study; each is registered in experiments/experiment.cpp.
 #include "experiments/experiment.h"
 #include "experiments/gem_geometry.h"
+#include "experiments/gem_metrics_experiment.h"
 #include "experiments/ohtsuka1998.h"
 #include "experiments/ohtsuka1998_result.h"
 #include "experiments/optics_bench.h"

@@ -17,6 +17,10 @@ const std::vector<Experiment>& all() {
         {"gem-geometry",
          "Round brilliant: facet drawings, proportions measured back, Fresnel diamond renders, plane-set vs mesh cost",
          gem_geometry::run},
+        {"gem-metrics",
+         "Round brilliant optics: light return, fire, leakage and scintillation with their errors (exact polarisation "
+         "and natural light), ASET / ideal-scope / hearts-and-arrows images, convergence with the ray count",
+         gem_metrics_experiment::run},
         {"ohtsuka1998",
          "Ohtsuka & Kawai 1998: dispersion in a diamond, light + eye pass, shortcut speed-up, wavelength/threshold studies, the floor map against photons and element size",
          ohtsuka1998::run},

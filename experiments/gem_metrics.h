@@ -20,6 +20,15 @@ struct MetricOptions {
     int wavelengths = 31;               // spectral bands, 400..700 nm
     bool exact_polarisation = true;     // Stokes–Mueller along every path
     std::uint64_t seed = 1;             // the cut's own stream: results do not depend on order
+    // Added with the implementation (docs/gem-metrics.md, "Ray counts"):
+    double threshold = 1e-3;  // ray-tree pruning threshold (Yasuda's cumulative attenuation)
+    int max_depth = 32;       // surface interactions along one path
+    // Eye rays of each metric: light return and leakage `rays`; fire rays/16 pixels, each
+    // traced at every wavelength; scintillation rays/4 pixels, each at three tilts.
+    int fire_divisor = 16;
+    int scintillation_divisor = 4;
+    double tilt_deg = 2.0;    // scintillation: the small tilt of the stone
+    int spot_rotations = 32;  // fire, scintillation: the spot layout turned about the axis
 };
 
 // A measured value and its standard error (one sigma, from the ray statistics).
@@ -33,8 +42,19 @@ struct GemMetrics {
     Metric fire;           // dispersed coloured light return
     Metric leakage;        // light lost through the pavilion
     Metric scintillation;  // pattern change under small tilts
-    // Leakage per facet kind ("pavilion main", "lower half", ...), facet_kind() names.
+    // Leakage per facet kind, facet_kind() names: always "girdle", "lower half",
+    // "pavilion main", "culet" in this order (0 where the cut has none); `leakage` sums the
+    // last three (the pavilion), the girdle is listed apart.
     std::vector<std::pair<std::string, double>> leakage_by_kind;
+    // Energy bookkeeping of the light-return eye rays (means over the rays, whose bands are
+    // drawn by luminance): light leaving through the crown (any direction), through the girdle, through
+    // the pavilion, dropped by the threshold or depth limit, and eye rays that missed the
+    // stone; they sum to 1 up to rounding for a clear stone.
+    struct Balance {
+        double crown = 0, girdle = 0, pavilion = 0, lost = 0, missed = 0;
+    };
+    Balance balance;
+    int light_return_rays = 0, fire_pixels = 0, scintillation_pixels = 0;  // as traced
 };
 
 GemMetrics measure(const Gem& gem, const MetricOptions& options);

@@ -1,0 +1,194 @@
+// The gem metrics of one round brilliant (docs/gem-metrics.md): eye rays from a distant
+// viewer above the table, traced through the exact cut at the options' wavelengths, and
+// the light their trees return under each observation set-up (experiments/gem_observation.h).
+#include "experiments/gem_metrics.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "core/random.h"
+#include "experiments/gem_observation.h"
+
+namespace refract::gem_metrics {
+
+namespace {
+
+// Mean and standard error of independent samples.
+struct Mean {
+    double sum = 0, sum2 = 0;
+    long n = 0;
+    void add(double v) {
+        sum += v;
+        sum2 += v * v;
+        ++n;
+    }
+    Metric metric() const {
+        if (n == 0) return {};
+        const double m = sum / n;
+        const double var = n > 1 ? std::max(0.0, (sum2 - n * m * m) / (n - 1)) : 0.0;
+        return {m, std::sqrt(var / n)};
+    }
+};
+
+// The eye ray of sample i of a metric (stream): a uniform point of the stone's outline
+// seen from straight above (a distant viewer: parallel rays along −z, the projected area
+// sampled uniformly by rejection from the girdle's circumscribed disk of radius 1.1).
+struct EyeSample {
+    Ray ray;
+    Rng rng;  // the sample's stream, continued (spot-layout rotations)
+};
+EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i) {
+    Rng rng(seed, stream, static_cast<std::uint64_t>(i));
+    for (;;) {
+        const double r = 1.1 * std::sqrt(rng.uniform()), phi = 2 * M_PI * rng.uniform();
+        const Ray ray{Vec3(r * std::cos(phi), r * std::sin(phi), 4.0), Vec3(0, 0, -1)};
+        if (intersect(gem.solid, ray, 0.0, 1e30)) return {ray, rng};
+    }
+}
+
+const Vec3 kUp(0, 0, 1);
+
+// The golden-ratio sequence frac(0.5 + i/φ): a low-discrepancy point of [0, 1) per ray.
+double golden(int i) {
+    const double g = 0.5 + 0.6180339887498949 * i;
+    return g - std::floor(g);
+}
+
+// Exits of one trace as spot probes (only those near a ring of spots) with their weights.
+struct Probes {
+    std::vector<std::pair<double, SpotProbe>> items;
+    void fill(const std::vector<GemTracer::Exit>& exits, const Eigen::Matrix3d& to_world) {
+        items.clear();
+        for (const auto& e : exits) {
+            if (e.weight <= 0) continue;
+            const SpotProbe p(to_world * e.dir, kUp);
+            if (p.near_ring()) items.emplace_back(e.weight, p);
+        }
+    }
+    double radiance(double rotation_deg) const {
+        double s = 0;
+        for (const auto& [w, p] : items) s += w * p.lit(rotation_deg);
+        return s;
+    }
+};
+
+// The layout rotations of one pixel: K stratified angles over the full turn.
+std::vector<double> rotations(Rng& rng, int K) {
+    const double u = rng.uniform();
+    std::vector<double> r;
+    for (int k = 0; k < K; ++k) r.push_back(360.0 * (k + u) / K);
+    return r;
+}
+
+}  // namespace
+
+GemMetrics measure(const Gem& gem, const MetricOptions& o) {
+    GemTracer t(gem, o);
+    GemMetrics m;
+    const int W = t.bands();
+    std::vector<GemTracer::Exit> exits;
+
+    // Light return, leakage and the energy balance: one band per eye ray, drawn by
+    // luminance along a golden-ratio sequence (every prefix of the rays spreads evenly).
+    const int N = o.rays;
+    Mean lr, leak;
+    std::vector<double> by_kind(t.kinds().size(), 0.0);
+    for (int i = 0; i < N; ++i) {
+        const int band = t.band_by_luminance(golden(i));
+        const auto tr = t.trace(eye_sample(gem, o.seed, 1, i).ray, band, exits);
+        double returned = 0, pav = 0;
+        for (const auto& e : exits) {
+            if (e.kind < 0) {
+                m.balance.missed += e.weight;
+                continue;
+            }
+            by_kind[static_cast<size_t>(e.kind)] += e.weight;
+            switch (t.kind_regions()[static_cast<size_t>(e.kind)]) {
+                case Region::Crown:
+                    m.balance.crown += e.weight;
+                    returned += e.weight * diffuse_with_head(e.dir, kUp);
+                    break;
+                case Region::Girdle: m.balance.girdle += e.weight; break;
+                case Region::Pavilion:
+                    m.balance.pavilion += e.weight;
+                    pav += e.weight;
+                    break;
+            }
+        }
+        m.balance.lost += tr.lost;
+        lr.add(returned);
+        leak.add(pav);
+    }
+    m.light_return = lr.metric();
+    m.leakage = leak.metric();
+    for (double* v : {&m.balance.crown, &m.balance.girdle, &m.balance.pavilion, &m.balance.lost, &m.balance.missed})
+        *v /= N;
+    for (const std::string& kind : leakage_kinds()) {
+        const auto it = std::find(t.kinds().begin(), t.kinds().end(), kind);
+        m.leakage_by_kind.emplace_back(kind, it == t.kinds().end() ? 0.0 : by_kind[static_cast<size_t>(it - t.kinds().begin())] / N);
+    }
+    m.light_return_rays = N;
+
+    // Fire: each pixel's eye ray at every band under spot lighting; the pixel's dispersed
+    // coloured light is the luminance of its returned spectrum above the spectrum's
+    // minimum (the white part), averaged over turns of the spot layout.
+    const int K = std::max(1, o.spot_rotations);
+    const int NF = std::max(4, N / std::max(1, o.fire_divisor));
+    Mean fire;
+    std::vector<Probes> band_probes(static_cast<size_t>(W));
+    std::vector<double> r(static_cast<size_t>(W));
+    const Eigen::Matrix3d none = Eigen::Matrix3d::Identity();
+    for (int i = 0; i < NF; ++i) {
+        EyeSample eye = eye_sample(gem, o.seed, 2, i);
+        for (int b = 0; b < W; ++b) {
+            t.trace(eye.ray, b, exits);
+            band_probes[static_cast<size_t>(b)].fill(exits, none);
+        }
+        double pixel = 0;
+        for (const double rot : rotations(eye.rng, K)) {
+            for (int b = 0; b < W; ++b) r[static_cast<size_t>(b)] = band_probes[static_cast<size_t>(b)].radiance(rot);
+            const double lo = *std::min_element(r.begin(), r.end());
+            double c = 0;
+            for (int b = 0; b < W; ++b) c += t.luminance_weight(b) * (r[static_cast<size_t>(b)] - lo);
+            pixel += c / W;
+        }
+        fire.add(pixel / K);
+    }
+    m.fire = fire.metric();
+    m.fire_pixels = NF;
+
+    // Scintillation: a pixel's luminance under spot lighting changes as the stone tilts by
+    // tilt_deg about x and about y; the mean absolute change of the two, averaged over
+    // turns of the spot layout.
+    const int NS = std::max(4, N / std::max(1, o.scintillation_divisor));
+    const double a = o.tilt_deg * M_PI / 180.0;
+    const std::array<Eigen::Matrix3d, 3> tilts{none, Eigen::AngleAxisd(a, Vec3::UnitX()).toRotationMatrix(),
+                                               Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix()};
+    std::array<Probes, 3> tilt_probes;
+    Mean scint;
+    for (int i = 0; i < NS; ++i) {
+        EyeSample eye = eye_sample(gem, o.seed, 3, i);
+        const int band = t.band_by_luminance(golden(i));
+        for (size_t k = 0; k < 3; ++k) {
+            // The stone turned by tilts[k], viewer and lights fixed: in the stone's frame the
+            // eye ray turns back, and its exits turn forward into the world.
+            const Ray in_gem{tilts[k].transpose() * eye.ray.origin, tilts[k].transpose() * eye.ray.dir};
+            t.trace(in_gem, band, exits);
+            tilt_probes[k].fill(exits, tilts[k]);
+        }
+        double pixel = 0;
+        for (const double rot : rotations(eye.rng, K)) {
+            const double i0 = tilt_probes[0].radiance(rot);
+            pixel += 0.5 * (std::abs(tilt_probes[1].radiance(rot) - i0) + std::abs(tilt_probes[2].radiance(rot) - i0));
+        }
+        scint.add(pixel / K);
+    }
+    m.scintillation = scint.metric();
+    m.scintillation_pixels = NS;
+    return m;
+}
+
+}  // namespace refract::gem_metrics

@@ -1,0 +1,45 @@
+#pragma once
+// `refract experiment gem-metrics`: the gem metrics (experiments/gem_metrics.h,
+// docs/gem-metrics.md) of the presets "tolkowsky" and "gia-default" with their statistical
+// errors, under exact polarisation and natural light; the images of the observation
+// set-ups (ASET, ideal-scope, arrows, hearts, brilliance); the convergence of each
+// metric's error with the ray count; and the cost of one cut (construction and metrics).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image.h"
+#include "experiments/experiment.h"
+#include "experiments/gem_metrics.h"
+
+namespace refract::experiments::gem_metrics_experiment {
+
+void run(const ExperimentOptions& opt);  // compute, then write into opt.out_dir
+
+struct PresetResult {
+    std::string preset;
+    Gem gem;
+    gem_metrics::GemMetrics exact, natural;  // the same rays, the two polarisation models
+    double build_seconds = 0;                // CGAL construction of the cut
+    double exact_seconds = 0, natural_seconds = 0;  // measure(), one thread
+    std::vector<std::pair<std::string, Image>> views;  // view name, image
+};
+
+struct ConvergenceRow {
+    std::string preset;
+    int rays = 0;
+    gem_metrics::GemMetrics metrics;
+};
+
+struct Result {
+    bool quick = false;
+    gem_metrics::MetricOptions options;  // of the metric table (exact; natural differs only there)
+    int image_size = 0, image_samples = 0;
+    std::vector<PresetResult> presets;
+    std::vector<ConvergenceRow> convergence;  // Tolkowsky's cut at growing ray counts
+};
+
+Result compute(const ExperimentOptions& opt);
+void write(const Result& r, const std::string& dir);
+
+}  // namespace refract::experiments::gem_metrics_experiment

@@ -1,0 +1,259 @@
+// The observation set-ups of the gem metrics and the eye-ray tracer through the exact cut.
+#include "experiments/gem_observation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/ray_tree.h"
+#include "core/scene.h"
+#include "core/spectrum/cie.h"
+#include "core/tracer.h"
+#include "geometry/error.h"
+
+namespace refract::gem_metrics {
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+}
+
+double elevation_deg(const Vec3& d, const Vec3& up) { return std::asin(std::clamp(d.dot(up), -1.0, 1.0)) / kDeg; }
+
+double diffuse_with_head(const Vec3& d, const Vec3& up) {
+    const double e = elevation_deg(d, up);
+    return e > 0.0 && e < 90.0 - kHeadDeg ? 1.0 : 0.0;
+}
+
+namespace {
+constexpr int kRings = 7;  // at 10°, 20°, ... 70°
+double ring_elevation(int k) { return 10.0 + 10.0 * k; }
+// Spots about 10° apart along ring k (its circumference 360°·cos e), the first at 5°·k.
+int ring_count(int k) { return std::max(1, static_cast<int>(std::lround(36.0 * std::cos(ring_elevation(k) * kDeg)))); }
+}  // namespace
+
+SpotProbe::SpotProbe(const Vec3& d, const Vec3& up) {
+    const Vec3 u = (std::abs(up.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(up).normalized();
+    const Vec3 v = up.cross(u);
+    const double e = elevation_deg(d, up);
+    const int ring = std::clamp(static_cast<int>(std::lround((e - 10.0) / 10.0)), 0, kRings - 1);
+    // Rings are 10° apart and spots 3° across: only the nearest ring can hold d.
+    if (std::abs(e - ring_elevation(ring)) > kSpotRadiusDeg) return;
+    ring_ = ring;
+    az_ = std::atan2(d.dot(v), d.dot(u)) / kDeg;
+    sin_e_ = std::sin(e * kDeg);
+    cos_e_ = std::cos(e * kDeg);
+}
+
+double SpotProbe::lit(double rotation_deg) const {
+    if (ring_ < 0) return 0.0;
+    const double spacing = 360.0 / ring_count(ring_);
+    const double rel = az_ - rotation_deg - 5.0 * ring_;  // azimuth in the turned layout
+    const double daz = (rel - spacing * std::round(rel / spacing)) * kDeg;  // to the nearest spot
+    const double re = ring_elevation(ring_) * kDeg;
+    // Spherical law of cosines: the angle between d and the spot's centre.
+    const double c = sin_e_ * std::sin(re) + cos_e_ * std::cos(re) * std::cos(daz);
+    return c >= std::cos(kSpotRadiusDeg * kDeg) ? 1.0 : 0.0;
+}
+
+double spot_lighting(const Vec3& d, const Vec3& up, double rotation_deg) { return SpotProbe(d, up).lit(rotation_deg); }
+
+Vec3 aset_colour(const Vec3& d, const Vec3& up) {
+    const double e = elevation_deg(d, up);
+    if (e < 0) return {1, 1, 1};
+    if (e < 45) return {0, 1, 0};
+    if (e < 75) return {1, 0, 0};
+    return {0, 0, 1};
+}
+
+Vec3 ideal_scope_colour(const Vec3& d, const Vec3& up) {
+    const double e = elevation_deg(d, up);
+    if (e < 0) return {1, 1, 1};
+    if (e < 80) return {0.85, 0.05, 0.05};
+    return {0, 0, 0};
+}
+
+Vec3 hearts_arrows_colour(const Vec3& d, const Vec3& up) {
+    const double e = elevation_deg(d, up);
+    return e >= 20 && e < 70 ? Vec3(1, 1, 1) : Vec3(0, 0, 0);
+}
+
+Region region_of_kind(const std::string& kind) {
+    if (kind == "girdle") return Region::Girdle;
+    if (kind == "lower half" || kind == "pavilion main" || kind == "culet") return Region::Pavilion;
+    return Region::Crown;
+}
+
+std::vector<std::string> leakage_kinds() { return {"girdle", "lower half", "pavilion main", "culet"}; }
+
+std::vector<double> metric_wavelengths(const MetricOptions& o) {
+    if (o.wavelengths < 1 || o.wavelengths > 301)
+        throw InputError("gem metrics: wavelengths = " + std::to_string(o.wavelengths) + " (allowed 1..301)");
+    if (o.wavelengths == 1) return {550.0};
+    std::vector<double> w;
+    for (int b = 0; b < o.wavelengths; ++b) w.push_back(400.0 + 300.0 * b / (o.wavelengths - 1));
+    return w;
+}
+
+GemTracer::GemTracer(const Gem& gem, const MetricOptions& o) : scene_(std::make_unique<Scene>()) {
+    if (o.rays < 16) throw InputError("gem metrics: rays = " + std::to_string(o.rays) + " (at least 16)");
+    if (!(o.threshold >= 0 && o.threshold < 1))
+        throw InputError("gem metrics: threshold = " + std::to_string(o.threshold) + " (allowed [0, 1))");
+    if (o.max_depth < 1 || o.max_depth > 1000)
+        throw InputError("gem metrics: max_depth = " + std::to_string(o.max_depth) + " (allowed 1..1000)");
+    const spectrum::Dispersion disp = spectrum::parse_dispersion_text(o.material, "gem metrics: material");
+    wavelengths_ = metric_wavelengths(o);
+    double ysum = 0;
+    for (const double l : wavelengths_) {
+        index_.push_back(disp.n(l));
+        luminance_.push_back(spectrum::cie_xyz_cmf(l).y());
+        ysum += luminance_.back();
+    }
+    for (double& y : luminance_) y *= static_cast<double>(luminance_.size()) / ysum;
+
+    material::Dielectric d;
+    d.ior = disp.nominal();
+    d.dispersion = disp;
+    scene_->source = "gem metrics";
+    scene_->materials.push_back({"gem", d});
+    scene_->objects.push_back({"gem", gem.solid, 0});
+    exact_ = o.exact_polarisation;
+    scene_->settings.polarisation = exact_ ? PolarisationModel::Exact : PolarisationModel::Natural;
+    scene_->settings.threshold = threshold_ = o.threshold;
+    scene_->settings.max_depth = max_depth_ = o.max_depth;
+    tracer_ = std::make_unique<SceneTracer>(*scene_);
+
+    for (const std::string& label : gem.solid.labels) {
+        const std::string k = facet_kind(label);
+        auto it = std::find(kinds_.begin(), kinds_.end(), k);
+        if (it == kinds_.end()) {
+            kinds_.push_back(k);
+            regions_.push_back(region_of_kind(k));
+            it = kinds_.end() - 1;
+        }
+        plane_kind_.push_back(static_cast<int>(it - kinds_.begin()));
+    }
+}
+
+GemTracer::~GemTracer() = default;
+
+int GemTracer::band_by_luminance(double u) const {
+    double c = 0;
+    const double total = static_cast<double>(bands());  // the weights average to 1
+    for (int b = 0; b < bands(); ++b) {
+        c += luminance_weight(b);
+        if (u * total < c) return b;
+    }
+    return bands() - 1;
+}
+
+int GemTracer::middle_band() const {
+    int best = 0;
+    for (int b = 1; b < bands(); ++b)
+        if (std::abs(wavelength(b) - 560.0) < std::abs(wavelength(best) - 560.0)) best = b;
+    return best;
+}
+
+namespace {
+
+// The walker's branch ends for an eye ray in the one-object gem scene: a branch leaving
+// the scene is an exit; there are no leaves; every band's index is given.
+template <class P>
+struct ExitEnds {
+    using Entry = TreeEntryT<P>;
+    using Walker = RayTreeWalkerT<P>;
+    const std::vector<int>& plane_kind;
+    double n, lambda;
+    std::vector<GemTracer::Exit>& exits;
+
+    void background(const Entry& e) {
+        const int kind = e.from.facet < 0 ? -1 : plane_kind[static_cast<size_t>(e.from.facet)];
+        exits.push_back({e.ray.dir, e.weight.mean() * throughput(e.pol), kind});
+    }
+    void leaf(const Entry&, const SurfaceHit&) {}
+    bool intercept(Walker&, const Entry&, const SurfaceHit&, typename Walker::List&) { return false; }
+    double band_ior(const Entry&, const SurfaceHit&) const { return n; }
+    double wavelength(const Entry&) const { return lambda; }
+};
+
+template <class P>
+P root_payload(const Ray&) {
+    return P{};
+}
+template <>
+EyeStokes root_payload<EyeStokes>(const Ray& r) {
+    // The eye records intensity only: any frame across the ray, no analyser.
+    EyeStokes s;
+    s.x = (std::abs(r.dir.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(r.dir).normalized();
+    return s;
+}
+
+}  // namespace
+
+template <class P>
+GemTracer::Trace GemTracer::trace_with(const Ray& ray, int band, std::vector<Exit>& exits) {
+    RenderStats stats;
+    TreeLimits limits;
+    limits.threshold = threshold_;
+    limits.max_depth = max_depth_;
+    RayTreeWalkerT<P> walker(*tracer_, limits, stats);
+    typename RayTreeWalkerT<P>::List list;
+    TreeEntryT<P> root;
+    root.ray = ray;
+    root.weight = Vec3(1, 1, 1);
+    root.band = static_cast<std::int16_t>(band);
+    root.pol = root_payload<P>(ray);
+    list.push_back(root);
+    ExitEnds<P> ends{plane_kind_, index(band), wavelength(band), exits};
+    walker.walk(list, ends);
+    return {stats.lost_threshold + stats.lost_depth + stats.lost_limits};
+}
+
+GemTracer::Trace GemTracer::trace(const Ray& ray, int band, std::vector<Exit>& exits) {
+    exits.clear();
+    return exact_ ? trace_with<EyeStokes>(ray, band, exits) : trace_with<NaturalLight>(ray, band, exits);
+}
+
+std::vector<std::string> view_names() { return {"aset", "ideal-scope", "arrows", "hearts", "brilliance"}; }
+
+Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options) {
+    const auto names = view_names();
+    if (std::find(names.begin(), names.end(), view) == names.end())
+        throw InputError("gem metrics: unknown view '" + view + "' (aset, ideal-scope, arrows, hearts, brilliance)");
+    if (size < 1 || samples < 1) throw InputError("gem metrics: image size and samples must be positive");
+    MetricOptions o = options;
+    o.rays = std::max(o.rays, 16);
+    GemTracer t(gem, o);
+    const bool below = view == "hearts";
+    const Vec3 up = below ? Vec3(0, 0, -1) : Vec3(0, 0, 1);
+    const int band = t.middle_band();
+    const double half = 1.05;
+    Image img(size, size);
+    std::vector<GemTracer::Exit> exits;
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            Vec3 c(0, 0, 0);
+            for (int sy = 0; sy < samples; ++sy)
+                for (int sx = 0; sx < samples; ++sx) {
+                    const double x = -half + 2 * half * (i + (sx + 0.5) / samples) / size;
+                    const double y = half - 2 * half * (j + (sy + 0.5) / samples) / size;
+                    // From below, the image's right is the stone's −x (mirrored, as drawn).
+                    const Ray r{below ? Vec3(-x, y, -4.0) : Vec3(x, y, 4.0), -up};
+                    t.trace(r, band, exits);
+                    for (const auto& e : exits) {
+                        if (e.kind < 0) {  // missed the stone: the viewer's dark background
+                            c += e.weight * Vec3(0.08, 0.08, 0.1);
+                            continue;
+                        }
+                        Vec3 col;
+                        if (view == "aset") col = aset_colour(e.dir, up);
+                        else if (view == "ideal-scope") col = ideal_scope_colour(e.dir, up);
+                        else if (view == "brilliance") col = Vec3::Constant(diffuse_with_head(e.dir, up));
+                        else col = hearts_arrows_colour(e.dir, up);
+                        c += e.weight * col;
+                    }
+                }
+            img.set(i, j, c / (samples * samples));
+        }
+    return img;
+}
+
+}  // namespace refract::gem_metrics

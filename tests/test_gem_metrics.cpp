@@ -1,0 +1,148 @@
+// Gem metrics (experiments/gem_metrics.h, docs/gem-metrics.md): convergence of the
+// statistical errors, the energy bookkeeping of the eye-ray trees, determinism, and the
+// physics a cut's proportions and its material's dispersion must show.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "experiments/gem_metrics.h"
+#include "experiments/gem_observation.h"
+#include "geometry/error.h"
+
+using namespace refract;
+using namespace refract::gem_metrics;
+
+namespace {
+
+const Gem& tolkowsky() {
+    static const Gem g = build_brilliant(brilliant_preset("tolkowsky"));
+    return g;
+}
+
+MetricOptions quick(int rays) {
+    MetricOptions o;
+    o.rays = rays;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("Gem metrics: the statistical error of each metric falls as one over the square root of the ray count",
+          "[gem-metrics]") {
+    const GemMetrics a = measure(tolkowsky(), quick(496));
+    const GemMetrics b = measure(tolkowsky(), quick(1984));  // 4x the rays: half the error
+    for (const auto& [name, ea, eb] : {std::tuple{"light return", a.light_return.error, b.light_return.error},
+                                       std::tuple{"leakage", a.leakage.error, b.leakage.error},
+                                       std::tuple{"fire", a.fire.error, b.fire.error},
+                                       std::tuple{"scintillation", a.scintillation.error, b.scintillation.error}}) {
+        INFO(name << ": error " << ea << " at N, " << eb << " at 4N");
+        REQUIRE(ea > 0);
+        CHECK(ea / eb == Approx(2.0).epsilon(0.35));
+    }
+    // And the values agree within their errors (3 sigma).
+    CHECK(std::abs(a.light_return.value - b.light_return.value) <
+          3 * std::hypot(a.light_return.error, b.light_return.error));
+    CHECK(std::abs(a.leakage.value - b.leakage.value) < 3 * std::hypot(a.leakage.error, b.leakage.error));
+}
+
+TEST_CASE("Gem metrics: light leaving through crown, girdle and pavilion plus the pruned light sums to one",
+          "[gem-metrics]") {
+    for (const bool exact : {true, false}) {
+        MetricOptions o = quick(310);
+        o.exact_polarisation = exact;
+        const GemMetrics m = measure(tolkowsky(), o);
+        const auto& s = m.balance;
+        INFO("exact " << exact << ": crown " << s.crown << " girdle " << s.girdle << " pavilion " << s.pavilion
+                      << " lost " << s.lost << " missed " << s.missed);
+        CHECK(s.crown + s.girdle + s.pavilion + s.lost + s.missed == Approx(1.0).margin(1e-12));
+        CHECK(s.missed == 0.0);                // every eye ray inside the girdle meets the stone
+        CHECK(s.lost < 0.01);                  // the threshold drops less than 1 %
+        CHECK(s.pavilion == Approx(m.leakage.value).margin(1e-12));
+        double by_kind = 0;
+        for (const auto& [kind, v] : m.leakage_by_kind) by_kind += v;
+        CHECK(by_kind == Approx(s.pavilion + s.girdle).margin(1e-12));
+        // Light return counts only crown light outside the head cone, luminance weighted.
+        CHECK(m.light_return.value > 0.2);
+        CHECK(m.light_return.value < s.crown * 1.2);
+    }
+}
+
+TEST_CASE("Gem metrics: the same seed gives identical metrics whichever thread measures", "[gem-metrics]") {
+    MetricOptions o = quick(124);
+    o.seed = 77;
+    const GemMetrics a = measure(tolkowsky(), o);
+    GemMetrics b;
+    std::thread th([&] { b = measure(tolkowsky(), o); });
+    th.join();
+    const GemMetrics c = measure(tolkowsky(), o);
+    for (const GemMetrics* x : std::vector<const GemMetrics*>{&b, &c}) {
+        CHECK(x->light_return.value == a.light_return.value);
+        CHECK(x->light_return.error == a.light_return.error);
+        CHECK(x->fire.value == a.fire.value);
+        CHECK(x->leakage.value == a.leakage.value);
+        CHECK(x->scintillation.value == a.scintillation.value);
+        CHECK(x->leakage_by_kind == a.leakage_by_kind);
+    }
+    o.seed = 78;
+    const GemMetrics d = measure(tolkowsky(), o);
+    CHECK(d.light_return.value != a.light_return.value);
+}
+
+TEST_CASE("Gem metrics: a pavilion far too shallow leaks more light through the pavilion than Tolkowsky's",
+          "[gem-metrics]") {
+    BrilliantCut shallow = brilliant_preset("tolkowsky");
+    shallow.pavilion_angle = 37.5;  // below the critical-angle design: light escapes the pavilion
+    const GemMetrics s = measure(build_brilliant(shallow), quick(992));
+    const GemMetrics t = measure(tolkowsky(), quick(992));
+    INFO("leakage shallow " << s.leakage.value << " +- " << s.leakage.error << ", Tolkowsky " << t.leakage.value
+                            << " +- " << t.leakage.error);
+    CHECK(s.leakage.value > t.leakage.value + 5 * std::hypot(s.leakage.error, t.leakage.error));
+}
+
+TEST_CASE("Gem metrics: a material without dispersion shows no fire", "[gem-metrics]") {
+    MetricOptions o = quick(496);
+    o.material = "2.417";  // diamond's index at every wavelength
+    const GemMetrics flat = measure(tolkowsky(), o);
+    CHECK(flat.fire.value == 0.0);
+    CHECK(flat.fire.error == 0.0);
+    o.material = "diamond";
+    const GemMetrics dia = measure(tolkowsky(), o);
+    CHECK(dia.fire.value > 3 * dia.fire.error);
+    // Without dispersion light return is nearly the same (the index at 560 nm is 2.42).
+    CHECK(flat.light_return.value == Approx(dia.light_return.value).margin(4 * dia.light_return.error));
+}
+
+TEST_CASE("Gem metrics: exact polarisation and natural light give close light return for a diamond",
+          "[gem-metrics]") {
+    MetricOptions o = quick(992);
+    const GemMetrics ex = measure(tolkowsky(), o);
+    o.exact_polarisation = false;
+    const GemMetrics nat = measure(tolkowsky(), o);
+    // Same rays: the difference is the model's, a few per cent at most.
+    CHECK(ex.light_return.value != nat.light_return.value);
+    CHECK(ex.light_return.value == Approx(nat.light_return.value).epsilon(0.05));
+}
+
+TEST_CASE("Gem metrics: the set-ups code exit directions by elevation as ASET and the viewers do", "[gem-metrics]") {
+    const Vec3 up(0, 0, 1);
+    auto dir = [](double el_deg) {
+        const double e = el_deg * M_PI / 180;
+        return Vec3(std::cos(e), 0, std::sin(e));
+    };
+    CHECK(aset_colour(dir(30), up) == Vec3(0, 1, 0));
+    CHECK(aset_colour(dir(60), up) == Vec3(1, 0, 0));
+    CHECK(aset_colour(dir(80), up) == Vec3(0, 0, 1));
+    CHECK(aset_colour(dir(-10), up) == Vec3(1, 1, 1));
+    CHECK(diffuse_with_head(dir(74), up) == 1.0);
+    CHECK(diffuse_with_head(dir(76), up) == 0.0);
+    CHECK(diffuse_with_head(dir(-1), up) == 0.0);
+    CHECK(elevation_deg(dir(33), up) == Approx(33).margin(1e-12));
+    // A spot's centre (ring 2 at 30°, azimuth offset 10°) is lit, a direction midway between spots is not.
+    const double e = 30 * M_PI / 180, az = 10 * M_PI / 180;
+    CHECK(spot_lighting(Vec3(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az), std::sin(e)), up) == 1.0);
+    CHECK(spot_lighting(dir(25), up) == 0.0);
+    CHECK_THROWS_AS(measure(tolkowsky(), quick(8)), InputError);
+}
