@@ -93,7 +93,15 @@ std::vector<double> metric_wavelengths(const MetricOptions& o) {
     return w;
 }
 
-GemTracer::GemTracer(const Gem& gem, const MetricOptions& o) : scene_(std::make_unique<Scene>()) {
+struct GemTracer::Lists {
+    RayTreeWalkerT<EyeStokes>::List exact;
+    RayTreeWalkerT<NaturalLight>::List natural;
+    auto& of(EyeStokes) { return exact; }
+    auto& of(NaturalLight) { return natural; }
+};
+
+GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
+    : scene_(std::make_unique<Scene>()), lists_(std::make_unique<Lists>()) {
     if (o.rays < 16) throw InputError("gem metrics: rays = " + std::to_string(o.rays) + " (at least 16)");
     if (!(o.threshold >= 0 && o.threshold < 1))
         throw InputError("gem metrics: threshold = " + std::to_string(o.threshold) + " (allowed [0, 1))");
@@ -195,7 +203,7 @@ GemTracer::Trace GemTracer::trace_with(const Ray& ray, int band, std::vector<Exi
     limits.threshold = threshold_;
     limits.max_depth = max_depth_;
     RayTreeWalkerT<P> walker(*tracer_, limits, stats);
-    typename RayTreeWalkerT<P>::List list;
+    auto& list = lists_->of(P{});  // empty: every walk runs to the end
     TreeEntryT<P> root;
     root.ray = ray;
     root.weight = Vec3(1, 1, 1);

@@ -112,8 +112,10 @@ private:
     template <class P>
     Trace trace_with(const Ray& ray, int band, std::vector<Exit>& exits);
 
+    struct Lists;  // the walker's FIFO lists, reused from trace to trace
     std::unique_ptr<Scene> scene_;
     std::unique_ptr<SceneTracer> tracer_;
+    std::unique_ptr<Lists> lists_;
     std::vector<double> wavelengths_, index_, luminance_;
     std::vector<std::string> kinds_;   // distinct facet kinds in plane order of first use
     std::vector<Region> regions_;      // per kind

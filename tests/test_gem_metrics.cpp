@@ -3,13 +3,19 @@
 // physics a cut's proportions and its material's dispersion must show.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <string>
 #include <thread>
 #include <tuple>
 #include <vector>
 
+#include "experiments/experiment.h"
 #include "experiments/gem_metrics.h"
 #include "experiments/gem_observation.h"
+#include "experiments/plot.h"
 #include "geometry/error.h"
 
 using namespace refract;
@@ -145,4 +151,26 @@ TEST_CASE("Gem metrics: the set-ups code exit directions by elevation as ASET an
     CHECK(spot_lighting(Vec3(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az), std::sin(e)), up) == 1.0);
     CHECK(spot_lighting(dir(25), up) == 0.0);
     CHECK_THROWS_AS(measure(tolkowsky(), quick(8)), InputError);
+}
+
+TEST_CASE("gem-metrics quick run writes the metric table, convergence, cost and the set-up images",
+          "[gem-metrics][experiment]") {
+    namespace fs = std::filesystem;
+    using namespace refract::experiments;
+    const fs::path dir = fs::temp_directory_path() / ("refract-gem-metrics-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    find("gem-metrics").run({dir.string(), 2, true});
+    for (const char* f : {"summary.md", "gem_metrics.csv", "gem_convergence.csv", "gem_cost.csv",
+                          "gem_leakage_by_kind.csv", "gem_view_tolkowsky_aset.png", "gem_view_gia-default_hearts.png"})
+        CHECK(fs::file_size(dir / f) > 0);
+    const Csv t = read_csv((dir / "gem_metrics.csv").string());
+    REQUIRE(t.rows.size() == 2 * 2 * 4);  // presets × polarisation models × metrics
+    for (const auto& row : t.rows) {
+        INFO(row[0] << " " << row[1] << " " << row[2]);
+        CHECK(std::stod(row[3]) >= 0);
+        CHECK(std::stod(row[4]) > 0);  // every value carries its error
+    }
+    CHECK(read_csv((dir / "gem_leakage_by_kind.csv").string()).rows.size() == 2 * 2 * 4);
+    std::error_code ec;
+    fs::remove_all(dir, ec);
 }
