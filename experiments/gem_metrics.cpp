@@ -86,7 +86,7 @@ std::vector<double> rotations(Rng& rng, int K) {
 }  // namespace
 
 GemMetrics measure(const Gem& gem, const MetricOptions& o) {
-    GemTracer t(gem, o);
+    GemTracer t(gem, o);  // validates the options
     GemMetrics m;
     const int W = t.bands();
     std::vector<GemTracer::Exit> exits;
@@ -135,8 +135,8 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     // Fire: each pixel's eye ray at every band under spot lighting; the pixel's dispersed
     // coloured light is the luminance of its returned spectrum above the spectrum's
     // minimum (the white part), averaged over turns of the spot layout.
-    const int K = std::max(1, o.spot_rotations);
-    const int NF = std::max(4, N / std::max(1, o.fire_divisor));
+    const int K = o.spot_rotations;
+    const int NF = std::max(4, N / o.fire_divisor);
     Mean fire;
     std::vector<Probes> band_probes(static_cast<size_t>(W));
     std::vector<double> r(static_cast<size_t>(W));
@@ -163,7 +163,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     // Scintillation: a pixel's luminance under spot lighting changes as the stone tilts by
     // tilt_deg about x and about y; the mean absolute change of the two, averaged over
     // turns of the spot layout.
-    const int NS = std::max(4, N / std::max(1, o.scintillation_divisor));
+    const int NS = std::max(4, N / o.scintillation_divisor);
     const double a = o.tilt_deg * M_PI / 180.0;
     const std::array<Eigen::Matrix3d, 3> tilts{none, Eigen::AngleAxisd(a, Vec3::UnitX()).toRotationMatrix(),
                                                Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix()};

@@ -57,6 +57,10 @@ struct GemMetrics {
     int light_return_rays = 0, fire_pixels = 0, scintillation_pixels = 0;  // as traced
 };
 
+// Throws InputError (one line naming the option, its value and the allowed range) for
+// options `measure` cannot use; `measure` calls it first.
+void validate(const MetricOptions& options);
+
 GemMetrics measure(const Gem& gem, const MetricOptions& options);
 
 }  // namespace refract::gem_metrics

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/ray_tree.h"
 #include "core/scene.h"
@@ -84,9 +85,25 @@ Region region_of_kind(const std::string& kind) {
 
 std::vector<std::string> leakage_kinds() { return {"girdle", "lower half", "pavilion main", "culet"}; }
 
+void validate(const MetricOptions& o) {
+    auto bad = [](const std::string& name, double v, const std::string& allowed) {
+        std::ostringstream m;
+        m << "gem metrics: " << name << " = " << v << " (allowed " << allowed << ")";
+        throw InputError(m.str());
+    };
+    if (o.rays < 16 || o.rays > (1 << 28)) bad("rays", o.rays, "16..2^28");
+    if (o.wavelengths < 1 || o.wavelengths > 301) bad("wavelengths", o.wavelengths, "1..301");
+    if (!(o.threshold >= 0 && o.threshold < 1)) bad("threshold", o.threshold, "[0, 1)");
+    if (o.max_depth < 1 || o.max_depth > 1000) bad("max_depth", o.max_depth, "1..1000");
+    if (o.fire_divisor < 1 || o.fire_divisor > o.rays) bad("fire_divisor", o.fire_divisor, "1..rays");
+    if (o.scintillation_divisor < 1 || o.scintillation_divisor > o.rays)
+        bad("scintillation_divisor", o.scintillation_divisor, "1..rays");
+    if (!(o.tilt_deg > 0 && o.tilt_deg <= 45)) bad("tilt_deg", o.tilt_deg, "(0, 45]");
+    if (o.spot_rotations < 1 || o.spot_rotations > 4096) bad("spot_rotations", o.spot_rotations, "1..4096");
+}
+
 std::vector<double> metric_wavelengths(const MetricOptions& o) {
-    if (o.wavelengths < 1 || o.wavelengths > 301)
-        throw InputError("gem metrics: wavelengths = " + std::to_string(o.wavelengths) + " (allowed 1..301)");
+    validate(o);
     if (o.wavelengths == 1) return {550.0};
     std::vector<double> w;
     for (int b = 0; b < o.wavelengths; ++b) w.push_back(400.0 + 300.0 * b / (o.wavelengths - 1));
@@ -102,11 +119,7 @@ struct GemTracer::Lists {
 
 GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
     : scene_(std::make_unique<Scene>()), lists_(std::make_unique<Lists>()) {
-    if (o.rays < 16) throw InputError("gem metrics: rays = " + std::to_string(o.rays) + " (at least 16)");
-    if (!(o.threshold >= 0 && o.threshold < 1))
-        throw InputError("gem metrics: threshold = " + std::to_string(o.threshold) + " (allowed [0, 1))");
-    if (o.max_depth < 1 || o.max_depth > 1000)
-        throw InputError("gem metrics: max_depth = " + std::to_string(o.max_depth) + " (allowed 1..1000)");
+    validate(o);
     const spectrum::Dispersion disp = spectrum::parse_dispersion_text(o.material, "gem metrics: material");
     wavelengths_ = metric_wavelengths(o);
     double ysum = 0;

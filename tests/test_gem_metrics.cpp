@@ -150,7 +150,22 @@ TEST_CASE("Gem metrics: the set-ups code exit directions by elevation as ASET an
     const double e = 30 * M_PI / 180, az = 10 * M_PI / 180;
     CHECK(spot_lighting(Vec3(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az), std::sin(e)), up) == 1.0);
     CHECK(spot_lighting(dir(25), up) == 0.0);
-    CHECK_THROWS_AS(measure(tolkowsky(), quick(8)), InputError);
+}
+
+TEST_CASE("Gem metrics: options outside their range are refused with the option named", "[gem-metrics]") {
+    CHECK_THROWS_WITH(measure(tolkowsky(), quick(8)), Catch::Contains("rays = 8"));
+    MetricOptions o = quick(64);
+    o.wavelengths = 0;
+    CHECK_THROWS_WITH(measure(tolkowsky(), o), Catch::Contains("wavelengths = 0"));
+    o = quick(64);
+    o.tilt_deg = -1;
+    CHECK_THROWS_WITH(measure(tolkowsky(), o), Catch::Contains("tilt_deg"));
+    o = quick(64);
+    o.material = "unobtainium";
+    CHECK_THROWS_AS(measure(tolkowsky(), o), InputError);
+    o = quick(64);
+    o.threshold = 1;
+    CHECK_THROWS_WITH(measure(tolkowsky(), o), Catch::Contains("threshold"));
 }
 
 TEST_CASE("gem-metrics quick run writes the metric table, convergence, cost and the set-up images",
