@@ -40,19 +40,19 @@ SpotProbe::SpotProbe(const Vec3& d, const Vec3& up) {
     if (std::abs(e - ring_elevation(ring)) > kSpotRadiusDeg) return;
     ring_ = ring;
     az_ = std::atan2(d.dot(v), d.dot(u)) / kDeg;
-    sin_e_ = std::sin(e * kDeg);
-    cos_e_ = std::cos(e * kDeg);
+    spacing_ = 360.0 / ring_count(ring);
+    // Spherical law of cosines: the angle between d and a spot's centre on the ring.
+    const double re = ring_elevation(ring) * kDeg;
+    a_ = std::sin(e * kDeg) * std::sin(re);
+    b_ = std::cos(e * kDeg) * std::cos(re);
 }
 
 double SpotProbe::lit(double rotation_deg) const {
+    static const double cos_radius = std::cos(kSpotRadiusDeg * kDeg);
     if (ring_ < 0) return 0.0;
-    const double spacing = 360.0 / ring_count(ring_);
     const double rel = az_ - rotation_deg - 5.0 * ring_;  // azimuth in the turned layout
-    const double daz = (rel - spacing * std::round(rel / spacing)) * kDeg;  // to the nearest spot
-    const double re = ring_elevation(ring_) * kDeg;
-    // Spherical law of cosines: the angle between d and the spot's centre.
-    const double c = sin_e_ * std::sin(re) + cos_e_ * std::cos(re) * std::cos(daz);
-    return c >= std::cos(kSpotRadiusDeg * kDeg) ? 1.0 : 0.0;
+    const double daz = (rel - spacing_ * std::nearbyint(rel / spacing_)) * kDeg;  // to the nearest spot
+    return a_ + b_ * std::cos(daz) >= cos_radius ? 1.0 : 0.0;
 }
 
 double spot_lighting(const Vec3& d, const Vec3& up, double rotation_deg) { return SpotProbe(d, up).lit(rotation_deg); }

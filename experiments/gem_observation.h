@@ -54,7 +54,8 @@ public:
 
 private:
     int ring_ = -1;
-    double az_ = 0, sin_e_ = 0, cos_e_ = 0;
+    double az_ = 0, spacing_ = 0;
+    double a_ = 0, b_ = 0;  // cos(angle to a spot's centre) = a + b·cos(Δazimuth)
 };
 
 // The images' colour coding of an exit direction (refract's renderings of the viewers):
