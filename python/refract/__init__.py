@@ -39,7 +39,7 @@ from ._refract import (  # noqa: F401  (the public API)
 
 __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
-    "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_proportions", "load_scene", "material",
+    "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_metrics", "gem_proportions", "load_scene", "material",
     "materials", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
     "trace", "trace_pixel", "write_image", "yasuda1984",
 ]
@@ -147,3 +147,15 @@ def cut_brilliant(preset=None, **params):
     triangle_facet (M,), planes (K, 4: unit outward normal, offset), labels, facets,
     facet_counts, measured and closed_form proportions, cut, girdle_description."""
     return _refract._cut_brilliant(preset, params)
+
+
+def gem_metrics(preset=None, rays=4096, exact_polarisation=True, material="diamond", seed=1, **params):
+    """Light return, fire, leakage and scintillation of a round brilliant (docs/gem-metrics.md).
+
+    The cut as for cut_brilliant (preset, then params over it). rays: light-return eye rays
+    (fire and scintillation pixels scale with it); exact_polarisation False: natural light;
+    material: a catalogue name or a constant index ("2.417"); seed: the cut's own stream.
+    Returns a dict: light_return, fire, leakage, scintillation (each {"value", "error"},
+    one standard error), leakage_by_kind, balance (crown, girdle, pavilion, lost, missed),
+    cut, rays, fire_pixels, scintillation_pixels. Single-threaded, deterministic."""
+    return _refract._gem_metrics(preset, params, rays, exact_polarisation, material, seed)

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 
+#include "experiments/gem_metrics.h"
 #include "geometry/error.h"
 #include "geometry/gem/brilliant.h"
 #include "python/src/bindings.h"
@@ -69,7 +70,8 @@ py::dict cut_dict(const BrilliantCut& c) {
     return d;
 }
 
-py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
+// A preset (None: the defaults) with parameters by name over it.
+BrilliantCut parse_cut(const py::object& preset, const py::dict& params) {
     BrilliantCut cut = preset.is_none() ? BrilliantCut{} : brilliant_preset(preset.cast<std::string>());
     for (const auto& kv : params) {
         const std::string name = py::str(kv.first);
@@ -87,6 +89,41 @@ py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
         }
         it->second(cut, v, name);
     }
+    return cut;
+}
+
+py::dict metric(const gem_metrics::Metric& m) { return py::dict(py::arg("value") = m.value, py::arg("error") = m.error); }
+
+// experiments/gem_metrics.h: the metrics of one cut, with their errors.
+py::dict measure_cut(const py::object& preset, const py::dict& params, int rays, bool exact, const std::string& material,
+                     std::uint64_t seed) {
+    const BrilliantCut cut = parse_cut(preset, params);
+    gem_metrics::MetricOptions o;
+    o.rays = rays;
+    o.exact_polarisation = exact;
+    o.material = material;
+    o.seed = seed;
+    gem_metrics::GemMetrics m;
+    {
+        py::gil_scoped_release nogil;
+        m = gem_metrics::measure(build_brilliant(cut), o);
+    }
+    py::dict by_kind, balance;
+    for (const auto& [kind, v] : m.leakage_by_kind) by_kind[py::str(kind)] = v;
+    balance["crown"] = m.balance.crown;
+    balance["girdle"] = m.balance.girdle;
+    balance["pavilion"] = m.balance.pavilion;
+    balance["lost"] = m.balance.lost;
+    balance["missed"] = m.balance.missed;
+    return py::dict(py::arg("light_return") = metric(m.light_return), py::arg("fire") = metric(m.fire),
+                    py::arg("leakage") = metric(m.leakage), py::arg("scintillation") = metric(m.scintillation),
+                    py::arg("leakage_by_kind") = by_kind, py::arg("balance") = balance, py::arg("cut") = cut_dict(cut),
+                    py::arg("rays") = m.light_return_rays, py::arg("fire_pixels") = m.fire_pixels,
+                    py::arg("scintillation_pixels") = m.scintillation_pixels);
+}
+
+py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
+    const BrilliantCut cut = parse_cut(preset, params);
     Gem gem;
     {
         py::gil_scoped_release nogil;
@@ -143,6 +180,8 @@ py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
 void bind_gem(py::module_& m) {
     m.def("brilliant_presets", &brilliant_preset_names, "Named brilliant-cut presets.");
     m.def("_cut_brilliant", &cut_brilliant, py::arg("preset"), py::arg("params"));
+    m.def("_gem_metrics", &measure_cut, py::arg("preset"), py::arg("params"), py::arg("rays"), py::arg("exact"),
+          py::arg("material"), py::arg("seed"));
 }
 
 }  // namespace refract::python

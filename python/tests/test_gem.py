@@ -41,3 +41,17 @@ def test_bad_cut_parameters_are_named():
         refract.cut_brilliant(girdle_facets=16.5)
     with pytest.raises(ValueError, match="tolkowsky"):
         refract.cut_brilliant("round")
+
+
+def test_gem_metrics_carry_errors_and_a_shallow_pavilion_leaks_more():
+    t = refract.gem_metrics("tolkowsky", rays=992)
+    s = refract.gem_metrics("tolkowsky", rays=992, pavilion_angle=37.5)
+    for key in ("light_return", "fire", "leakage", "scintillation"):
+        assert t[key]["error"] > 0, key
+    b = t["balance"]
+    assert b["crown"] + b["girdle"] + b["pavilion"] + b["lost"] + b["missed"] == pytest.approx(1.0, abs=1e-12)
+    assert s["leakage"]["value"] > t["leakage"]["value"] + 5 * np.hypot(s["leakage"]["error"], t["leakage"]["error"])
+    assert refract.gem_metrics("tolkowsky", rays=992) == t  # deterministic
+    assert refract.gem_metrics("tolkowsky", rays=496, material="2.417")["fire"]["value"] == 0.0
+    with pytest.raises(ValueError, match="rays = 8"):
+        refract.gem_metrics("tolkowsky", rays=8)
