@@ -35,6 +35,37 @@ std::string pm(const Metric& m) { return fmt(m.value, 4) + " ± " + fmt(m.error,
 
 }  // namespace
 
+nlohmann::json viewer_scene(const std::string& preset, const std::string& view, const std::string& map_file, int size) {
+    const bool below = view == "hearts";
+    return nlohmann::json{
+        {"description", "Round brilliant '" + preset + "' in the " + view +
+                            " viewer (docs/gem-metrics.md): the viewer as an environment map coloured by elevation, "
+                            "diamond (Peter 1923) at 400-700 nm, exact polarisation"},
+        {"camera",
+         {{"location", vec(0, below ? -12.0 : 12.0, 0)}, {"look_at", vec(0, 0, 0)}, {"sky", vec(0, 0, 1)},
+          {"angle", 11}, {"width", size}, {"height", size}}},
+        {"background", {{"type", "environment"}, {"map", map_file}}},
+        {"materials", {{"diamond", {{"type", "dielectric"}, {"dispersion", "diamond"}}}}},
+        {"objects", nlohmann::json::array({{{"type", "brilliant"}, {"name", "diamond"}, {"preset", preset},
+                                            {"position", vec(0, 0, 0)}, {"diameter", 2}, {"material", "diamond"}}})},
+        {"render", {{"max_depth", 24}, {"polarisation", "exact"}}},
+    };
+}
+
+std::vector<std::pair<std::string, std::string>> viewer_maps() {
+    return {{"viewer-aset.exr", "aset"},
+            {"viewer-ideal-scope.exr", "ideal-scope"},
+            {"viewer-arrows.exr", "arrows"},
+            {"viewer-hearts.exr", "hearts"}};
+}
+
+std::vector<std::pair<std::string, nlohmann::json>> viewer_scenes(int size) {
+    std::vector<std::pair<std::string, nlohmann::json>> out;
+    for (const auto& [map, view] : viewer_maps())
+        out.emplace_back("tolkowsky-" + view + ".json", viewer_scene("tolkowsky", view, map, size));
+    return out;
+}
+
 Result compute(const ExperimentOptions& opt) {
     Result r;
     r.quick = opt.quick;
@@ -196,6 +227,13 @@ void write(const Result& r, const std::string& dir) {
       << "ASET (red 45–75°, green 0–45°, blue: the viewer, white: leakage), ideal-scope (red reflector, black "
       << "viewing hole, white leakage), arrows (face up) and hearts (table down, seen from below) through the "
       << "reflector viewer, and the brilliance set-up's radiance. Single images: `gem_view_PRESET_VIEW.png`.\n";
+    // The viewers as scene files (the same as scenes/gems/).
+    for (const auto& [file, view] : viewer_maps())
+        write_image(dir + "/" + file, gem_metrics::viewer_environment(view, kViewerMapWidth));
+    for (const auto& [file, scene] : viewer_scenes(320)) save_json(dir, file, scene);
+    s << "\nThe viewers as scene files (`tolkowsky-VIEW.json` with the environment maps `viewer-VIEW.exr`, the "
+      << "same as `scenes/gems/`): `refract render tolkowsky-aset.json -o aset.png` renders the stone in the ASET "
+      << "viewer with the spectral eye pass (dispersion) and exact polarisation.\n";
     write_text_atomic(dir + "/summary.md", s.str());
 }
 

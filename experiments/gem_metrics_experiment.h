@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/image.h"
 #include "experiments/experiment.h"
 #include "experiments/gem_metrics.h"
@@ -38,6 +40,17 @@ struct Result {
     std::vector<PresetResult> presets;
     std::vector<ConvergenceRow> convergence;  // Tolkowsky's cut at growing ray counts
 };
+
+// A viewer as a scene file for `refract render` (scenes/gems/): the preset's stone
+// (diameter 2, its axis the scene's +y) in the view's environment map `map_file`
+// (gem_observation.h viewer_environment, beside the scene), seen from 12 units above (from
+// below for "hearts"), spectral with diamond's dispersion and exact polarisation.
+nlohmann::json viewer_scene(const std::string& preset, const std::string& view, const std::string& map_file, int size);
+// The scene files scenes/gems/ holds, as the experiment writes them: (file name, scene),
+// and the maps: (file name, view).
+std::vector<std::pair<std::string, nlohmann::json>> viewer_scenes(int size);
+std::vector<std::pair<std::string, std::string>> viewer_maps();
+constexpr int kViewerMapWidth = 360;
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);

@@ -235,10 +235,39 @@ GemTracer::Trace GemTracer::trace(const Ray& ray, int band, std::vector<Exit>& e
 
 std::vector<std::string> view_names() { return {"aset", "ideal-scope", "arrows", "hearts", "brilliance"}; }
 
-Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options) {
+namespace {
+void check_view(const std::string& view) {
     const auto names = view_names();
     if (std::find(names.begin(), names.end(), view) == names.end())
         throw InputError("gem metrics: unknown view '" + view + "' (aset, ideal-scope, arrows, hearts, brilliance)");
+}
+}  // namespace
+
+Vec3 view_colour(const std::string& view, const Vec3& d, const Vec3& up) {
+    if (view == "aset") return aset_colour(d, up);
+    if (view == "ideal-scope") return ideal_scope_colour(d, up);
+    if (view == "brilliance") return Vec3::Constant(diffuse_with_head(d, up));
+    if (view == "arrows" || view == "hearts") return hearts_arrows_colour(d, up);
+    check_view(view);
+    return {0, 0, 0};
+}
+
+Image viewer_environment(const std::string& view, int width) {
+    check_view(view);
+    if (width < 2 || width % 2) throw InputError("gem metrics: environment map width must be even and at least 2");
+    const int height = width / 2;
+    const Vec3 up = view == "hearts" ? Vec3(0, -1, 0) : Vec3(0, 1, 0);
+    Image img(width, height);
+    for (int j = 0; j < height; ++j) {
+        const double e = (90.0 - 180.0 * (j + 0.5) / height) * kDeg;  // the row's elevation above +y's horizon
+        const Vec3 c = view_colour(view, Vec3(std::cos(e), std::sin(e), 0), up);
+        for (int i = 0; i < width; ++i) img.set(i, j, c);
+    }
+    return img;
+}
+
+Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options) {
+    check_view(view);
     if (size < 1 || samples < 1) throw InputError("gem metrics: image size and samples must be positive");
     MetricOptions o = options;
     o.rays = std::max(o.rays, 16);
@@ -264,12 +293,7 @@ Image render_view(const Gem& gem, const std::string& view, int size, int samples
                             c += e.weight * Vec3(0.08, 0.08, 0.1);
                             continue;
                         }
-                        Vec3 col;
-                        if (view == "aset") col = aset_colour(e.dir, up);
-                        else if (view == "ideal-scope") col = ideal_scope_colour(e.dir, up);
-                        else if (view == "brilliance") col = Vec3::Constant(diffuse_with_head(e.dir, up));
-                        else col = hearts_arrows_colour(e.dir, up);
-                        c += e.weight * col;
+                        c += e.weight * view_colour(view, e.dir, up);
                     }
                 }
             img.set(i, j, c / (samples * samples));

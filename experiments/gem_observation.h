@@ -135,6 +135,14 @@ std::vector<double> metric_wavelengths(const MetricOptions& options);
 // "ideal-scope", "arrows"; "hearts" looks at the pavilion from below (table down),
 // mirrored as seen from below; "brilliance" shows the brilliance set-up's radiance.
 std::vector<std::string> view_names();
+// The colour a view's viewer sends along direction d (unit, leaving the stone), `up`
+// pointing from the stone to the viewer: the functions above by name.
+Vec3 view_colour(const std::string& view, const Vec3& d, const Vec3& up);
 Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options);
+
+// A view's viewer as an equirectangular environment map (docs/scene-format.md, width ×
+// width/2, row 0 at +y) for scene files with the scene's +y as the stone's axis: the
+// colour of each row's elevation; "hearts" has the viewer below (−y).
+Image viewer_environment(const std::string& view, int width);
 
 }  // namespace refract::gem_metrics

@@ -7,12 +7,17 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <tuple>
 #include <vector>
 
+#include "core/image.h"
+#include "experiments/common.h"
 #include "experiments/experiment.h"
+#include "experiments/gem_metrics_experiment.h"
 #include "experiments/gem_metrics.h"
 #include "experiments/gem_observation.h"
 #include "experiments/plot.h"
@@ -188,4 +193,34 @@ TEST_CASE("gem-metrics quick run writes the metric table, convergence, cost and 
     CHECK(read_csv((dir / "gem_leakage_by_kind.csv").string()).rows.size() == 2 * 2 * 4);
     std::error_code ec;
     fs::remove_all(dir, ec);
+}
+
+TEST_CASE("Gem viewer scene files in scenes/gems are exactly the ones gem-metrics writes, maps coloured by elevation",
+          "[gem-metrics][scenes]") {
+    namespace fs = std::filesystem;
+    using namespace refract::experiments;
+    const fs::path dir = fs::path(REFRACT_SOURCE_DIR) / "scenes" / "gems";
+    for (const auto& [file, scene] : gem_metrics_experiment::viewer_scenes(320)) {
+        std::ifstream in(dir / file, std::ios::binary);
+        REQUIRE(in);
+        std::ostringstream text;
+        text << in.rdbuf();
+        CHECK(text.str() == json_text(scene));
+        CHECK_NOTHROW(scene_from_json(scene, (dir / file).string()));
+    }
+    for (const auto& [file, view] : gem_metrics_experiment::viewer_maps()) {
+        const Image want = viewer_environment(view, gem_metrics_experiment::kViewerMapWidth);
+        const Image got = read_image((dir / file).string());
+        REQUIRE(got.width == want.width);
+        REQUIRE(got.height == want.height);
+        double worst = 0;
+        for (size_t k = 0; k < want.rgb.size(); ++k) worst = std::max(worst, std::abs(got.rgb[k] - want.rgb[k]));
+        CHECK(worst < 1e-3);  // stored in half precision
+    }
+    // ASET's map: the top rows (the viewer) blue, rows at 60° red, at 30° green, below white.
+    const Image aset = viewer_environment("aset", 360);
+    CHECK(aset.at(0, 5) == Vec3(0, 0, 1));
+    CHECK(aset.at(0, 30) == Vec3(1, 0, 0));
+    CHECK(aset.at(0, 60) == Vec3(0, 1, 0));
+    CHECK(aset.at(0, 120) == Vec3(1, 1, 1));
 }
