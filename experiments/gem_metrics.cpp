@@ -139,7 +139,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     const int NF = std::max(4, N / o.fire_divisor);
     Mean fire;
     std::vector<Probes> band_probes(static_cast<size_t>(W));
-    std::vector<double> r(static_cast<size_t>(W));
+    std::vector<double> r(static_cast<size_t>(W)), coloured(static_cast<size_t>(W), 0.0);
     const Eigen::Matrix3d none = Eigen::Matrix3d::Identity();
     for (int i = 0; i < NF; ++i) {
         EyeSample eye = eye_sample(gem, o.seed, 2, i);
@@ -152,13 +152,18 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
             for (int b = 0; b < W; ++b) r[static_cast<size_t>(b)] = band_probes[static_cast<size_t>(b)].radiance(rot);
             const double lo = *std::min_element(r.begin(), r.end());
             double c = 0;
-            for (int b = 0; b < W; ++b) c += t.luminance_weight(b) * (r[static_cast<size_t>(b)] - lo);
+            for (int b = 0; b < W; ++b) {
+                c += t.luminance_weight(b) * (r[static_cast<size_t>(b)] - lo);
+                coloured[static_cast<size_t>(b)] += r[static_cast<size_t>(b)] - lo;
+            }
             pixel += c / W;
         }
         fire.add(pixel / K);
     }
     m.fire = fire.metric();
     m.fire_pixels = NF;
+    for (int b = 0; b < W; ++b)
+        m.fire_spectrum.emplace_back(t.wavelength(b), coloured[static_cast<size_t>(b)] / (static_cast<double>(NF) * K));
 
     // Scintillation: a pixel's luminance under spot lighting changes as the stone tilts by
     // tilt_deg about x and about y; the mean absolute change of the two, averaged over

@@ -54,6 +54,9 @@ struct GemMetrics {
         double crown = 0, girdle = 0, pavilion = 0, lost = 0, missed = 0;
     };
     Balance balance;
+    // Fire resolved by wavelength: per band (nm), the mean over pixels and layout turns of
+    // the coloured part r_b − min r of the returned spectrum (no luminance weight).
+    std::vector<std::pair<double, double>> fire_spectrum;
     int light_return_rays = 0, fire_pixels = 0, scintillation_pixels = 0;  // as traced
 };
 

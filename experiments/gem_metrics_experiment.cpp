@@ -210,6 +210,29 @@ void write(const Result& r, const std::string& dir) {
        << "'' skip 1 using 1:5 with linespoints title 'scintillation', ref/sqrt(x) with lines dt 2 lc rgb 'black' title 'N^{-1/2} through the first light-return point'\n";
     gnuplot_figure(dir, "gem_convergence", gp.str());
 
+    // Fire by wavelength.
+    Csv spec;
+    spec.header = {"wavelength_nm"};
+    for (const auto& p : r.presets) spec.header.push_back(p.preset);
+    for (size_t b = 0; b < r.presets[0].exact.fire_spectrum.size(); ++b) {
+        std::vector<std::string> row{fmt(r.presets[0].exact.fire_spectrum[b].first)};
+        for (const auto& p : r.presets) row.push_back(fmt(p.exact.fire_spectrum[b].second));
+        spec.add(row);
+    }
+    write_csv(dir + "/gem_fire_spectrum.csv", spec);
+    std::ostringstream fs;
+    fs << "set datafile separator comma\nset grid\nset key top left\nset xlabel 'wavelength (nm)'\n"
+       << "set ylabel 'coloured light above the white part'\nset xrange [400:700]\n"
+       << "set title 'Fire resolved by wavelength (spot lighting, exact polarisation)'\nplot ";
+    for (size_t k = 0; k < r.presets.size(); ++k)
+        fs << (k ? ", " : "") << "'gem_fire_spectrum.csv' skip 1 using 1:" << k + 2 << " with linespoints title '"
+           << r.presets[k].preset << "'";
+    fs << "\n";
+    gnuplot_figure(dir, "gem_fire_spectrum", fs.str());
+    s << "\n## Fire by wavelength\n\n`gem_fire_spectrum.csv`, `gem_fire_spectrum.png`: per band the mean coloured "
+      << "part r_b − min r of the pixels' returned spectra under spot lighting (no luminance weight): where in the "
+      << "spectrum the coloured flashes lie.\n";
+
     // Images.
     std::vector<Panel> panels;
     for (const auto& p : r.presets)
