@@ -150,7 +150,8 @@ void write(const Result& r, const std::string& dir) {
     Csv kinds;
     kinds.header = {"preset", "polarisation", "kind", "share"};
     s << "\n## Where the light of an eye ray leaves (exact polarisation)\n\nShares of the eye rays' light "
-      << "(unweighted, mean over rays and wavelengths); the leakage column sums the pavilion kinds.\n\n"
+      << "(means over the eye rays, their bands drawn by luminance); the pavilion column (the leakage) sums lower "
+      << "half, pavilion main and culet; the girdle is listed apart.\n\n"
       << "| preset | crown | girdle | pavilion | pruned | sum |";
     for (const auto& [kind, v] : r.presets[0].exact.leakage_by_kind) s << " " << kind << " |";
     s << "\n|---|---:|---:|---:|---:|---:|";
