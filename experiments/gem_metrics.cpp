@@ -128,7 +128,8 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
         *v /= N;
     for (const std::string& kind : leakage_kinds()) {
         const auto it = std::find(t.kinds().begin(), t.kinds().end(), kind);
-        m.leakage_by_kind.emplace_back(kind, it == t.kinds().end() ? 0.0 : by_kind[static_cast<size_t>(it - t.kinds().begin())] / N);
+        const double v = it == t.kinds().end() ? 0.0 : by_kind[static_cast<size_t>(it - t.kinds().begin())];
+        m.leakage_by_kind.emplace_back(kind, v / N);
     }
     m.light_return_rays = N;
 

@@ -208,7 +208,8 @@ void write(const Result& r, const std::string& dir) {
        << "ref = " << fmt(err[0][0] * std::sqrt(n[0])) << "\n"
        << "plot 'gem_convergence.csv' skip 1 using 1:2 with linespoints title 'light return', "
        << "'' skip 1 using 1:3 with linespoints title 'fire', '' skip 1 using 1:4 with linespoints title 'leakage', "
-       << "'' skip 1 using 1:5 with linespoints title 'scintillation', ref/sqrt(x) with lines dt 2 lc rgb 'black' title 'N^{-1/2} through the first light-return point'\n";
+       << "'' skip 1 using 1:5 with linespoints title 'scintillation', "
+       << "ref/sqrt(x) with lines dt 2 lc rgb 'black' title 'N^{-1/2} through the first light-return point'\n";
     gnuplot_figure(dir, "gem_convergence", gp.str());
 
     // Fire by wavelength.
