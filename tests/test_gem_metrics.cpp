@@ -224,3 +224,26 @@ TEST_CASE("Gem viewer scene files in scenes/gems are exactly the ones gem-metric
     CHECK(aset.at(0, 60) == Vec3(0, 1, 0));
     CHECK(aset.at(0, 120) == Vec3(1, 1, 1));
 }
+
+TEST_CASE("Gem tracer: the table reflects the normal-incidence Fresnel share of an eye ray back along the axis",
+          "[gem-metrics]") {
+    // R = ((n − 1)/(n + 1))² at normal incidence (Born & Wolf §1.5.3); n = 2.417.
+    const double n = 2.417, R = std::pow((n - 1) / (n + 1), 2);
+    for (const bool exact : {true, false}) {
+        MetricOptions o = quick(64);
+        o.material = "2.417";
+        o.exact_polarisation = exact;
+        GemTracer t(tolkowsky(), o);
+        std::vector<GemTracer::Exit> exits;
+        const auto tr = t.trace({Vec3(0.01, 0.02, 4.0), Vec3(0, 0, -1)}, 0, exits);
+        REQUIRE(exits.size() > 1);
+        INFO("exact " << exact);
+        CHECK(exits[0].weight == Approx(R).epsilon(1e-12));
+        CHECK(t.kinds()[static_cast<size_t>(exits[0].kind)] == "table");
+        CHECK(exits[0].dir.z() == Approx(1.0).epsilon(1e-15));
+        CHECK(diffuse_with_head(exits[0].dir, Vec3(0, 0, 1)) == 0.0);  // the head blocks it
+        double sum = tr.lost;
+        for (const auto& e : exits) sum += e.weight;
+        CHECK(sum == Approx(1.0).epsilon(1e-12));
+    }
+}
