@@ -33,19 +33,28 @@ struct Mean {
     }
 };
 
-// The eye ray of sample i of a metric (stream): a uniform point of the stone's outline
-// seen from straight above (a distant viewer: parallel rays along −z, the projected area
-// sampled uniformly by rejection from the girdle's circumscribed disk of radius 1.1).
+// The eye ray of sample i of a metric (stream): the viewer's direction v drawn uniformly
+// over the cap of directions within `cone_deg` of the axis; a distant viewer, so parallel
+// rays along −v through points drawn uniformly over the stone's outline seen from v
+// (rejection from the disk of radius 1.1 across v about the stone's centre).
 struct EyeSample {
     Ray ray;
-    Rng rng;  // the sample's stream, continued (spot-layout rotations)
+    Vec3 viewer;  // unit, from the stone towards the eye
+    Rng rng;      // the sample's stream, continued (spot-layout rotations)
 };
-EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i) {
+EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg) {
     Rng rng(seed, stream, static_cast<std::uint64_t>(i));
+    Vec3 v(0, 0, 1);
+    if (cone_deg > 0) {
+        const double c = 1 - rng.uniform() * (1 - std::cos(cone_deg * M_PI / 180)), phi = 2 * M_PI * rng.uniform();
+        const double sn = std::sqrt(std::max(0.0, 1 - c * c));
+        v = Vec3(sn * std::cos(phi), sn * std::sin(phi), c);
+    }
+    const Vec3 a = (std::abs(v.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(v).normalized(), b = v.cross(a);
     for (;;) {
         const double r = 1.1 * std::sqrt(rng.uniform()), phi = 2 * M_PI * rng.uniform();
-        const Ray ray{Vec3(r * std::cos(phi), r * std::sin(phi), 4.0), Vec3(0, 0, -1)};
-        if (intersect(gem.solid, ray, 0.0, 1e30)) return {ray, rng};
+        const Ray ray{r * std::cos(phi) * a + r * std::sin(phi) * b + 4.0 * v, -v};
+        if (intersect(gem.solid, ray, 0.0, 1e30)) return {ray, v, rng};
     }
 }
 
@@ -98,7 +107,8 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> by_kind(t.kinds().size(), 0.0);
     for (int i = 0; i < N; ++i) {
         const int band = t.band_by_luminance(golden(i));
-        const auto tr = t.trace(eye_sample(gem, o.seed, 1, i).ray, band, exits);
+        const EyeSample eye = eye_sample(gem, o.seed, 1, i, o.viewer_cone_deg);
+        const auto tr = t.trace(eye.ray, band, exits);
         double returned = 0, pav = 0;
         for (const auto& e : exits) {
             if (e.kind < 0) {
@@ -109,7 +119,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
             switch (t.kind_regions()[static_cast<size_t>(e.kind)]) {
                 case Region::Crown:
                     m.balance.crown += e.weight;
-                    returned += e.weight * diffuse_with_head(e.dir, kUp);
+                    returned += e.weight * diffuse_with_head(e.dir, kUp, eye.viewer);
                     break;
                 case Region::Girdle: m.balance.girdle += e.weight; break;
                 case Region::Pavilion:
@@ -143,7 +153,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> r(static_cast<size_t>(W)), coloured(static_cast<size_t>(W), 0.0);
     const Eigen::Matrix3d none = Eigen::Matrix3d::Identity();
     for (int i = 0; i < NF; ++i) {
-        EyeSample eye = eye_sample(gem, o.seed, 2, i);
+        EyeSample eye = eye_sample(gem, o.seed, 2, i, o.viewer_cone_deg);
         for (int b = 0; b < W; ++b) {
             t.trace(eye.ray, b, exits);
             band_probes[static_cast<size_t>(b)].fill(exits, none);
@@ -176,7 +186,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::array<Probes, 3> tilt_probes;
     Mean scint;
     for (int i = 0; i < NS; ++i) {
-        EyeSample eye = eye_sample(gem, o.seed, 3, i);
+        EyeSample eye = eye_sample(gem, o.seed, 3, i, o.viewer_cone_deg);
         const int band = t.band_by_luminance(golden(i));
         for (size_t k = 0; k < 3; ++k) {
             // The stone turned by tilts[k], viewer and lights fixed: in the stone's frame the

@@ -29,6 +29,10 @@ struct MetricOptions {
     int scintillation_divisor = 4;
     double tilt_deg = 2.0;    // scintillation: the small tilt of the stone
     int spot_rotations = 32;  // fire, scintillation: the spot layout turned about the axis
+    // The viewer's eye, drawn per eye ray uniformly over the directions within this angle
+    // of the stone's axis (the observer moving the head a little, as a tilted stone would
+    // be seen); 0: straight above.
+    double viewer_cone_deg = 10.0;
 };
 
 // A measured value and its standard error (one sigma, from the ray statistics).

@@ -33,12 +33,19 @@ struct ConvergenceRow {
     gem_metrics::GemMetrics metrics;
 };
 
+// One cut of the pavilion-angle scan: GIA's default proportions with this pavilion angle.
+struct ScanRow {
+    double pavilion_angle = 0;
+    gem_metrics::GemMetrics metrics;  // exact polarisation
+};
+
 struct Result {
     bool quick = false;
     gem_metrics::MetricOptions options;  // of the metric table (exact; natural differs only there)
     int image_size = 0, image_samples = 0;
     std::vector<PresetResult> presets;
     std::vector<ConvergenceRow> convergence;  // Tolkowsky's cut at growing ray counts
+    std::vector<ScanRow> pavilion_scan;       // the metrics against the pavilion angle
 };
 
 // A viewer as a scene file for `refract render` (scenes/gems/): the preset's stone

@@ -19,10 +19,12 @@ constexpr double kDeg = M_PI / 180.0;
 
 double elevation_deg(const Vec3& d, const Vec3& up) { return std::asin(std::clamp(d.dot(up), -1.0, 1.0)) / kDeg; }
 
-double diffuse_with_head(const Vec3& d, const Vec3& up) {
-    const double e = elevation_deg(d, up);
-    return e > 0.0 && e < 90.0 - kHeadDeg ? 1.0 : 0.0;
+double diffuse_with_head(const Vec3& d, const Vec3& up, const Vec3& viewer) {
+    static const double cos_head = std::cos(kHeadDeg * kDeg);
+    return d.dot(up) > 0.0 && d.dot(viewer) < cos_head ? 1.0 : 0.0;
 }
+
+double diffuse_with_head(const Vec3& d, const Vec3& up) { return diffuse_with_head(d, up, up); }
 
 namespace {
 constexpr int kRings = 7;  // at 10°, 20°, ... 70°
@@ -99,6 +101,7 @@ void validate(const MetricOptions& o) {
     if (o.scintillation_divisor < 1 || o.scintillation_divisor > o.rays)
         bad("scintillation_divisor", o.scintillation_divisor, "1..rays");
     if (!(o.tilt_deg > 0 && o.tilt_deg <= 45)) bad("tilt_deg", o.tilt_deg, "(0, 45]");
+    if (!(o.viewer_cone_deg >= 0 && o.viewer_cone_deg <= 45)) bad("viewer_cone_deg", o.viewer_cone_deg, "[0, 45]");
     if (o.spot_rotations < 1 || o.spot_rotations > 4096) bad("spot_rotations", o.spot_rotations, "1..4096");
 }
 

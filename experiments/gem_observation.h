@@ -33,8 +33,11 @@ constexpr double kHeadDeg = 15.0;
 
 // Brilliance set-up (Hemphill et al. 1998: diffuse hemispherical illumination, the
 // observer's head an obstruction): radiance 1 from every direction above the horizon
-// outside the head cone, 0 from the head and from below.
+// (`up` the stone's axis) outside the head cone, within kHeadDeg of `viewer` (the unit
+// direction from the stone to the viewer's eye, by default on the axis), 0 from the
+// head and from below.
 double diffuse_with_head(const Vec3& d, const Vec3& up);
+double diffuse_with_head(const Vec3& d, const Vec3& up, const Vec3& viewer);
 
 // Fire and scintillation set-up (spot lighting after Reinitz et al. 2001; the layout is
 // refract's own): round spots of kSpotRadiusDeg on rings at elevations 10°, 20°, ... 70°,
