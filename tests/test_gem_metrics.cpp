@@ -100,6 +100,19 @@ TEST_CASE("Gem metrics: the same seed gives identical metrics whichever thread m
     o.seed = 78;
     const GemMetrics d = measure(tolkowsky(), o);
     CHECK(d.light_return.value != a.light_return.value);
+    // Two cuts measured at once on two threads, as a sweep does: the same as one by one.
+    const Gem gia = build_brilliant(brilliant_preset("gia-default"));
+    const GemMetrics gia_alone = measure(gia, o);
+    GemMetrics x, y;
+    std::thread t1([&] { x = measure(tolkowsky(), o); });
+    std::thread t2([&] { y = measure(gia, o); });
+    t1.join();
+    t2.join();
+    CHECK(x.light_return.value == d.light_return.value);
+    CHECK(x.fire.value == d.fire.value);
+    CHECK(y.light_return.value == gia_alone.light_return.value);
+    CHECK(y.scintillation.value == gia_alone.scintillation.value);
+    CHECK(y.fire_spectrum == gia_alone.fire_spectrum);
 }
 
 TEST_CASE("Gem metrics: a pavilion far too shallow leaks more light through the pavilion than Tolkowsky's",
