@@ -116,6 +116,12 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
                 continue;
             }
             by_kind[static_cast<size_t>(e.kind)] += e.weight;
+            switch (aset_zone(e.dir, eye.viewer)) {
+                case AsetZone::Red: m.aset.red += e.weight; break;
+                case AsetZone::Green: m.aset.green += e.weight; break;
+                case AsetZone::Blue: m.aset.blue += e.weight; break;
+                case AsetZone::Leak: m.aset.white += e.weight; break;
+            }
             switch (t.kind_regions()[static_cast<size_t>(e.kind)]) {
                 case Region::Crown:
                     m.balance.crown += e.weight;
@@ -134,7 +140,8 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     }
     m.light_return = lr.metric();
     m.leakage = leak.metric();
-    for (double* v : {&m.balance.crown, &m.balance.girdle, &m.balance.pavilion, &m.balance.lost, &m.balance.missed})
+    for (double* v : {&m.balance.crown, &m.balance.girdle, &m.balance.pavilion, &m.balance.lost, &m.balance.missed,
+                      &m.aset.red, &m.aset.green, &m.aset.blue, &m.aset.white})
         *v /= N;
     for (const std::string& kind : leakage_kinds()) {
         const auto it = std::find(t.kinds().begin(), t.kinds().end(), kind);

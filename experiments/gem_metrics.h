@@ -58,6 +58,13 @@ struct GemMetrics {
         double crown = 0, girdle = 0, pavilion = 0, lost = 0, missed = 0;
     };
     Balance balance;
+    // The same rays' light by the ASET zone it comes from (AGS ASET; the zones about the
+    // direction to the eye): red 45–75°, green 0–45°, blue 75–90° (the viewer), white
+    // below the horizon; with balance.lost they sum to 1.
+    struct Aset {
+        double red = 0, green = 0, blue = 0, white = 0;
+    };
+    Aset aset;
     // Fire resolved by wavelength: per band (nm), the mean over pixels and layout turns of
     // the coloured part r_b − min r of the returned spectrum (no luminance weight).
     std::vector<std::pair<double, double>> fire_spectrum;

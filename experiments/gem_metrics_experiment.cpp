@@ -176,6 +176,19 @@ void write(const Result& r, const std::string& dir) {
             for (const auto& [kind, v] : m->leakage_by_kind) kinds.add({p.preset, model, kind, fmt(v)});
     }
     write_csv(dir + "/gem_leakage_by_kind.csv", kinds);
+    Csv aset;
+    aset.header = {"preset", "polarisation", "red", "green", "blue", "white"};
+    s << "\nBy ASET zone (the same rays; zones about the direction to the eye):\n\n"
+      << "| preset | red 45–75° | green 0–45° | blue 75–90° (viewer) | white (below the horizon) |\n"
+      << "|---|---:|---:|---:|---:|\n";
+    for (const auto& p : r.presets) {
+        const auto& a = p.exact.aset;
+        s << "| " << p.preset << " | " << fmt(a.red, 4) << " | " << fmt(a.green, 4) << " | " << fmt(a.blue, 4) << " | "
+          << fmt(a.white, 4) << " |\n";
+        for (const auto& [model, m] : {std::pair{"exact", &p.exact}, std::pair{"natural", &p.natural}})
+            aset.add({p.preset, model, fmt(m->aset.red), fmt(m->aset.green), fmt(m->aset.blue), fmt(m->aset.white)});
+    }
+    write_csv(dir + "/gem_aset.csv", aset);
 
     // Cost of one cut.
     Csv cost;

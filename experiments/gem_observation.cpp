@@ -59,12 +59,22 @@ double SpotProbe::lit(double rotation_deg) const {
 
 double spot_lighting(const Vec3& d, const Vec3& up, double rotation_deg) { return SpotProbe(d, up).lit(rotation_deg); }
 
-Vec3 aset_colour(const Vec3& d, const Vec3& up) {
+AsetZone aset_zone(const Vec3& d, const Vec3& up) {
     const double e = elevation_deg(d, up);
-    if (e < 0) return {1, 1, 1};
-    if (e < 45) return {0, 1, 0};
-    if (e < 75) return {1, 0, 0};
-    return {0, 0, 1};
+    if (e < 0) return AsetZone::Leak;
+    if (e < 45) return AsetZone::Green;
+    if (e < 90 - kHeadDeg) return AsetZone::Red;
+    return AsetZone::Blue;
+}
+
+Vec3 aset_colour(const Vec3& d, const Vec3& up) {
+    switch (aset_zone(d, up)) {
+        case AsetZone::Leak: return {1, 1, 1};
+        case AsetZone::Green: return {0, 1, 0};
+        case AsetZone::Red: return {1, 0, 0};
+        case AsetZone::Blue: return {0, 0, 1};
+    }
+    return {0, 0, 0};
 }
 
 Vec3 ideal_scope_colour(const Vec3& d, const Vec3& up) {

@@ -66,6 +66,8 @@ private:
 // horizon) white. Ideal-scope: the red reflector up to 80°, the viewing hole above 80°
 // black, leakage white. Hearts-and-arrows viewer: the reflector tube 20–70° white, the
 // viewing tube above 70° and the dark base below 20° black.
+enum class AsetZone { Green, Red, Blue, Leak };  // 0–45°, 45–75°, 75–90°, below the horizon
+AsetZone aset_zone(const Vec3& d, const Vec3& up);
 Vec3 aset_colour(const Vec3& d, const Vec3& up);
 Vec3 ideal_scope_colour(const Vec3& d, const Vec3& up);
 Vec3 hearts_arrows_colour(const Vec3& d, const Vec3& up);

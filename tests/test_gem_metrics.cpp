@@ -75,6 +75,10 @@ TEST_CASE("Gem metrics: light leaving through crown, girdle and pavilion plus th
         double by_kind = 0;
         for (const auto& [kind, v] : m.leakage_by_kind) by_kind += v;
         CHECK(by_kind == Approx(s.pavilion + s.girdle).margin(1e-12));
+        const auto& a = m.aset;
+        CHECK(a.red + a.green + a.blue + a.white + s.lost == Approx(1.0).margin(1e-12));
+        CHECK(a.white >= s.pavilion);  // light leaving through the pavilion goes below the horizon
+        CHECK(a.red > a.green);        // a well-cut stone returns mostly ASET red
         // Light return counts only crown light outside the head cone, luminance weighted.
         CHECK(m.light_return.value > 0.2);
         CHECK(m.light_return.value < s.crown * 1.2);

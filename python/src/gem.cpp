@@ -115,9 +115,14 @@ py::dict measure_cut(const py::object& preset, const py::dict& params, int rays,
     balance["pavilion"] = m.balance.pavilion;
     balance["lost"] = m.balance.lost;
     balance["missed"] = m.balance.missed;
+    py::dict aset;
+    aset["red"] = m.aset.red;
+    aset["green"] = m.aset.green;
+    aset["blue"] = m.aset.blue;
+    aset["white"] = m.aset.white;
     return py::dict(py::arg("light_return") = metric(m.light_return), py::arg("fire") = metric(m.fire),
                     py::arg("leakage") = metric(m.leakage), py::arg("scintillation") = metric(m.scintillation),
-                    py::arg("leakage_by_kind") = by_kind, py::arg("balance") = balance, py::arg("cut") = cut_dict(cut),
+                    py::arg("leakage_by_kind") = by_kind, py::arg("balance") = balance, py::arg("aset") = aset, py::arg("cut") = cut_dict(cut),
                     py::arg("rays") = m.light_return_rays, py::arg("fire_pixels") = m.fire_pixels,
                     py::arg("scintillation_pixels") = m.scintillation_pixels);
 }
