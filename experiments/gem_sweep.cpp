@@ -97,7 +97,9 @@ std::string Axis::text() const {
         std::string s = (u < 0 ? "-" : "") + std::to_string(std::abs(u) / p);
         if (decimals > 0) {
             std::string frac = std::to_string(std::abs(u) % p);
-            s += "." + std::string(decimals - frac.size(), '0') + frac;
+            frac = std::string(decimals - frac.size(), '0') + frac;
+            while (!frac.empty() && frac.back() == '0') frac.pop_back();
+            if (!frac.empty()) s += "." + frac;
         }
         return s;
     };

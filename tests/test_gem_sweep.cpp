@@ -15,7 +15,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "experiments/gem_cuts.h"
 #include "experiments/gem_sweep_file.h"
+#include "experiments/plot.h"
 #include "geometry/error.h"
 
 namespace fs = std::filesystem;
@@ -73,7 +75,8 @@ TEST_CASE("Sweep ranges START STOP STEP give the exact decimal values", "[sweep]
     CHECK(p.count == 51);
     CHECK(p.value(3) == 38.3);  // the double nearest 38.3, not 38 + 3 * 0.1
     CHECK(p.value(50) == 43.0);
-    CHECK(p.text() == "38.0:43.0:0.1");
+    CHECK(p.text() == "38:43:0.1");
+    CHECK(sw::parse_axis("table", "52.50:60:0.25").text() == "52.5:60:0.25");
     const sw::Axis c = sw::parse_axis("crown_angle", "23:41:0.5");
     CHECK(c.count == 37);
     CHECK(c.value(36) == 41.0);
@@ -242,5 +245,38 @@ TEST_CASE("Sweep command refuses a bad range naming the parameter", "[sweep]") {
         CHECK_FALSE(fs::exists(out));
         CHECK_FALSE(fs::exists(sw::journal_path(out)));
     }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("gem-cuts quick writes the crown x pavilion maps, best cuts and summary", "[sweep]") {
+    namespace gc = refract::experiments::gem_cuts;
+    const fs::path dir = fresh_dir("gem-cuts");
+    const gc::Result r = gc::compute({dir.string(), 2, true});
+    REQUIRE(r.main_rows.size() == 9);
+    REQUIRE(r.detail_rows.size() == 4);
+    REQUIRE(r.optima.size() == gc::metrics().size());
+    REQUIRE(r.presets.size() == 2);
+    CHECK(r.presets[0].second.cut.table == 53.0);  // Tolkowsky's own cut, not a grid cell
+    for (size_t k = 0; k < gc::metrics().size(); ++k) {
+        const auto& m = gc::metrics()[k];
+        const auto& o = r.optima[k];
+        REQUIRE(o.top.size() == 5);
+        const double best = gc::metric_of(o.best.metrics, m.key).value;
+        for (const auto& row : r.main_rows)  // no cut of the grid beats the one named best
+            if (row.possible) CHECK_FALSE((m.maximise ? gc::metric_of(row.metrics, m.key).value > best
+                                                      : gc::metric_of(row.metrics, m.key).value < best));
+        CHECK(o.d_crown == o.best.cut.crown_angle - 34.5);
+    }
+    if (!refract::experiments::gnuplot_available()) return;
+    gc::write(r, dir.string());
+    for (const auto& m : gc::metrics()) {
+        CHECK(fs::file_size(dir / ("gem_cuts_" + m.key + ".png")) > 1000);
+        CHECK(fs::exists(dir / ("gem_cuts_" + m.key + ".pdf")));
+    }
+    const std::string csv = slurp(dir / "gem_cuts_sweep.csv");
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 10);
+    const std::string summary = slurp(dir / "summary.md");
+    CHECK(summary.find("refract sweep brilliant --crown-angle 30:38:4 --pavilion-angle 39:42:1.5") != std::string::npos);
+    CHECK(summary.find("28305 cuts") != std::string::npos);
     fs::remove_all(dir);
 }
