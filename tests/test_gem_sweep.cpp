@@ -209,9 +209,17 @@ TEST_CASE("Sweep killed mid-run resumes into the byte-identical CSV", "[sweep]")
         const std::string j = slurp(sw::journal_path(out));
         return std::count(j.begin(), j.end(), '\n') - 1;
     };
-    for (int i = 0; i < 20000 && rows_in_journal() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    ::kill(pid, SIGKILL);
     int status = 0;
+    bool exited = false;
+    for (int i = 0; i < 20000 && rows_in_journal() < 2; ++i) {
+        if (::waitpid(pid, &status, WNOHANG) == pid) {
+            exited = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    REQUIRE_FALSE(exited);  // it finished (or failed) before it could be interrupted
+    ::kill(pid, SIGKILL);
     ::waitpid(pid, &status, 0);
     const long finished = rows_in_journal();
     INFO("rows in the journal when killed: " << finished);
