@@ -85,6 +85,9 @@ std::vector<std::int64_t> all_indices(const Sweep& sweep);
 // The CSV: header, and one line per row (no newline); cells in shortest round-trip form.
 std::string csv_header();
 std::string csv_line(const Row& row);
-std::string number(double v);  // std::to_chars shortest round trip: locale-independent
+// The shortest text that reads back as `v` (std::to_chars): the same digits as
+// format_shortest (geometry/format.h) gives, but independent of the C locale, which a
+// program embedding refract may change, so the sweep's bytes cannot depend on it.
+std::string number(double v);
 
 }  // namespace refract::experiments::gem_sweep
