@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/sweep_mpi.h"
 #include "experiments/gem_sweep_file.h"
+#include "core/spectrum/dispersion.h"
 #include "geometry/error.h"
 
 namespace {
@@ -31,6 +32,11 @@ sw::Sweep make_sweep(const Args& a) {
         if (!a.ranges[k].empty()) sw::set_axis(s.grid, sw::parse_axis(sw::parameter_names()[k], a.ranges[k]));
     if (a.polarisation != "exact" && a.polarisation != "natural")
         throw refract::InputError("--polarisation '" + a.polarisation + "': expected exact or natural");
+    try {
+        refract::spectrum::catalogue(a.material);  // before any cut: an unknown name is bad input
+    } catch (const refract::InputError& e) {
+        throw refract::InputError("--material: " + std::string(e.what()));
+    }
     s.metric.material = a.material;
     s.metric.rays = a.rays;
     s.metric.wavelengths = a.wavelengths;

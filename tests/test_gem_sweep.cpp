@@ -243,7 +243,8 @@ TEST_CASE("Sweep command refuses a bad range naming the parameter", "[sweep]") {
              {"--crown-angle 41:23:0.5", "--crown-angle"},
              {"--pavilion-angle 38:x:0.1", "--pavilion-angle"},
              {"--table 50:60:0", "--table"},
-             {"--lower-half 70:80", "--lower-half"}}) {
+             {"--lower-half 70:80", "--lower-half"},
+             {"--material unobtainium", "--material"}}) {
         const int status = std::system((std::string(REFRACT_EXE) + " sweep brilliant " + args + " -o " + out + " 2>" + err).c_str());
         const std::string e = slurp(err);
         INFO(e);
