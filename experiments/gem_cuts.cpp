@@ -4,11 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
-#include "experiments/common.h"
-#include "experiments/gem_sweep_file.h"
-#include "experiments/plot.h"
 
 namespace refract::experiments::gem_cuts {
 
