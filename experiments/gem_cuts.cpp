@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-
 namespace refract::experiments::gem_cuts {
 
 namespace sw = gem_sweep;
