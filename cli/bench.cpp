@@ -31,7 +31,8 @@ struct Args {
     double timeout = 900;
     bool no_povray = false;
     int polarisation_pairs = 0;
-    bool kernels = false, meshes = false, objects = false;
+    bool kernels = false, meshes = false, objects = false, sweep = false;
+    int sweep_rays = 0;
     std::string rtiow;
     int rounds = 0;  // 0: 5 for --kernels / --meshes, 3 for the diamond
 };
@@ -211,10 +212,16 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_flag("--objects", a->objects, "Only the nearest-hit search over 10 to 10 000 spheres, BVH against linear");
     sub->add_option("--rtiow", a->rtiow,
                     "Only the RTIOW chapter scene against a build of the book's code at PATH (docs/performance.md)");
+    sub->add_flag("--sweep", a->sweep,
+                  "Only the proportion sweep: one cut's construction and evaluation apart, the full grid extrapolated, "
+                  "1 and 2 MPI ranks (--threads: the sample's threads)");
+    sub->add_option("--sweep-rays", a->sweep_rays, "With --sweep: rays per metric (default: the documented count)")
+        ->check(CLI::Range(1, 1 << 24));
     sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
-        if (a->kernels || a->meshes || a->objects || !a->rtiow.empty()) {
+        if (a->kernels || a->meshes || a->objects || a->sweep || !a->rtiow.empty()) {
+            if (a->sweep) cli::bench::sweep(a->threads, a->sweep_rays);
             if (a->objects) cli::bench::objects(a->rounds > 0 ? a->rounds : 5);
             if (!a->rtiow.empty()) cli::bench::rtiow(a->rtiow, a->rounds > 0 ? a->rounds : 3);
             if (a->kernels) cli::bench::kernels(a->rounds > 0 ? a->rounds : 5);

@@ -27,4 +27,9 @@ void objects(int rounds);
 // build of the book's own code at `book` (an executable writing its PPM to stdout).
 void rtiow(const std::string& book, int rounds);
 
+// The proportion sweep (refract sweep brilliant): construction (CGAL) and evaluation of one cut
+// timed apart, a sub-grid swept on `threads` and extrapolated to the full >= 26 000-cut grid,
+// and 1 against 2 MPI ranks; `rays` > 0 replaces the documented ray count.
+void sweep(int threads, int rays);
+
 }  // namespace refract::cli::bench

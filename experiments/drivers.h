@@ -1,6 +1,7 @@
 #pragma once
 // One driver per paper and study; each is registered in experiments/experiment.cpp.
 #include "experiments/experiment.h"
+#include "experiments/gem_cuts.h"
 #include "experiments/gem_geometry.h"
 #include "experiments/gem_metrics_experiment.h"
 #include "experiments/ohtsuka1998.h"

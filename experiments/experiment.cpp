@@ -31,6 +31,10 @@ const std::vector<Experiment>& all() {
          "Classic optics with the far-field detector against closed forms: a water drop's scattering per path class, "
          "rainbow angles against wavelength, a prism's deviation, a slab's transmittance (s and p)",
          optics_bench::run},
+        {"gem-cuts",
+         "Round brilliant proportion sweep: light return, fire, leakage and scintillation over crown x pavilion "
+         "angle, Tolkowsky 1919 against the optimum, the star and lower-half lengths",
+         gem_cuts::run},
     };
     return list;
 }

@@ -1,0 +1,141 @@
+#include "experiments/gem_cuts.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace refract::experiments::gem_cuts {
+
+namespace sw = gem_sweep;
+
+const std::vector<MetricInfo>& metrics() {
+    static const std::vector<MetricInfo> m{{"light_return", "light return (brilliance)", true},
+                                           {"fire", "fire (dispersed coloured light return)", true},
+                                           {"leakage", "leakage through the pavilion", false},
+                                           {"scintillation", "scintillation", true}};
+    return m;
+}
+
+const gem_metrics::Metric& metric_of(const gem_metrics::GemMetrics& g, const std::string& key) {
+    if (key == "light_return") return g.light_return;
+    if (key == "fire") return g.fire;
+    if (key == "leakage") return g.leakage;
+    return g.scintillation;
+}
+
+namespace {
+
+// Reproduce's ray count per metric, and the quick one; 31 wavelengths, exact polarisation.
+constexpr int kRays = 1024, kQuickRays = 64;
+
+sw::Sweep base_sweep(bool quick) {
+    sw::Sweep s;
+    s.grid = sw::single_cut_grid(brilliant_preset("gia-default"));
+    s.metric.rays = quick ? kQuickRays : kRays;
+    s.metric.wavelengths = quick ? 3 : 31;
+    return s;
+}
+
+// True when `a` is better than `b` for the metric.
+bool better(const MetricInfo& m, double a, double b) { return m.maximise ? a > b : a < b; }
+
+}  // namespace
+
+sw::Sweep crown_pavilion_sweep(bool quick) {
+    sw::Sweep s = base_sweep(quick);
+    sw::set_axis(s.grid, sw::parse_axis("crown_angle", quick ? "30:38:4" : "23:41:1"));
+    sw::set_axis(s.grid, sw::parse_axis("pavilion_angle", quick ? "39:42:1.5" : "38:43:0.25"));
+    return s;
+}
+
+sw::Sweep star_lower_half_sweep(bool quick) {
+    sw::Sweep s = base_sweep(quick);
+    sw::set_axis(s.grid, sw::parse_axis("star", quick ? "45:65:20" : "40:70:5"));
+    sw::set_axis(s.grid, sw::parse_axis("lower_half", quick ? "70:90:20" : "65:90:5"));
+    return s;
+}
+
+sw::Sweep full_sweep() {
+    sw::Sweep s = base_sweep(false);
+    s.metric.rays = 4096;
+    sw::set_axis(s.grid, sw::parse_axis("table", "52:66:1"));
+    sw::set_axis(s.grid, sw::parse_axis("crown_angle", "23:41:0.5"));
+    sw::set_axis(s.grid, sw::parse_axis("pavilion_angle", "38:43:0.1"));
+    return s;
+}
+
+std::string command_of(const sw::Sweep& s, const std::string& output) {
+    const sw::Sweep base = base_sweep(false);
+    std::string c = "refract sweep brilliant";
+    for (size_t k = 0; k < s.grid.axes.size(); ++k)
+        if (s.grid.axes[k].text() != base.grid.axes[k].text())
+            c += " " + sw::option_name(s.grid.axes[k].name) + " " + s.grid.axes[k].text();
+    c += " --rays " + std::to_string(s.metric.rays);
+    if (s.metric.wavelengths != 31) c += " --wavelengths " + std::to_string(s.metric.wavelengths);
+    return c + " -o " + output;
+}
+
+Result compute(const ExperimentOptions& opt) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Result r;
+    r.quick = opt.quick;
+    r.main = crown_pavilion_sweep(opt.quick);
+    r.detail = star_lower_half_sweep(opt.quick);
+    r.main_rows = sw::run(r.main, sw::all_indices(r.main), opt.threads);
+    r.detail_rows = sw::run(r.detail, sw::all_indices(r.detail), opt.threads);
+    for (const char* p : {"tolkowsky", "gia-default"})
+        r.presets.emplace_back(p, sw::evaluate_cut(brilliant_preset(p), r.main.metric));
+    for (const auto& row : r.main_rows) r.impossible += !row.possible;
+    const sw::Row& tolk = r.presets[0].second;
+
+    for (const MetricInfo& m : metrics()) {
+        std::vector<const sw::Row*> ok;
+        for (const auto& row : r.main_rows)
+            if (row.possible) ok.push_back(&row);
+        // Best first; ties by index (deterministic).
+        std::stable_sort(ok.begin(), ok.end(), [&](const sw::Row* a, const sw::Row* b) {
+            return better(m, metric_of(a->metrics, m.key).value, metric_of(b->metrics, m.key).value);
+        });
+        Optimum o;
+        o.metric = m.key;
+        if (!ok.empty()) o.best = *ok.front();
+        for (size_t i = 0; i < ok.size() && i < 5; ++i) o.top.push_back(*ok[i]);
+        o.tolkowsky = metric_of(tolk.metrics, m.key);
+        o.d_crown = o.best.cut.crown_angle - tolk.cut.crown_angle;
+        o.d_pavilion = o.best.cut.pavilion_angle - tolk.cut.pavilion_angle;
+        const gem_metrics::Metric& b = metric_of(o.best.metrics, m.key);
+        const double se = std::hypot(b.error, o.tolkowsky.error);
+        o.sigmas = se > 0 ? (b.value - o.tolkowsky.value) / se : 0;
+        r.optima.push_back(o);
+
+        Sensitivity s;
+        s.metric = m.key;
+        s.min = std::numeric_limits<double>::infinity();
+        s.max = -s.min;
+        int n = 0;
+        for (const auto& row : r.detail_rows) {
+            if (!row.possible) continue;
+            const auto& v = metric_of(row.metrics, m.key);
+            s.min = std::min(s.min, v.value);
+            s.max = std::max(s.max, v.value);
+            s.mean_error += v.error;
+            ++n;
+        }
+        if (n > 0) s.mean_error /= n;
+        else s.min = s.max = 0;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const sw::Row* row : ok) {
+            lo = std::min(lo, metric_of(row->metrics, m.key).value);
+            hi = std::max(hi, metric_of(row->metrics, m.key).value);
+        }
+        s.crown_pavilion_spread = ok.empty() ? 0 : hi - lo;
+        r.sensitivity.push_back(s);
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+}
+
+void run(const ExperimentOptions& opt) { write(compute(opt), opt.out_dir); }
+
+}  // namespace refract::experiments::gem_cuts
