@@ -38,6 +38,24 @@ Mueller jones_diagonal_to_mueller(std::complex<double> a, std::complex<double> b
     return M;
 }
 
+Mueller jones_to_mueller(const Eigen::Matrix2cd& J) {
+    using c = std::complex<double>;
+    Mueller M;
+    for (int col = 0; col < 4; ++col) {  // the image of each unit Stokes vector (Φ is linear in S)
+        Stokes S = Stokes::Zero();
+        S[col] = 1.0;
+        Eigen::Matrix2cd phi;
+        phi << c(0.5 * (S[0] + S[1]), 0), c(0.5 * S[2], -0.5 * S[3]), c(0.5 * S[2], 0.5 * S[3]),
+            c(0.5 * (S[0] - S[1]), 0);
+        const Eigen::Matrix2cd out = J * phi * J.adjoint();
+        M(0, col) = (out(0, 0) + out(1, 1)).real();
+        M(1, col) = (out(0, 0) - out(1, 1)).real();
+        M(2, col) = 2.0 * out(1, 0).real();
+        M(3, col) = 2.0 * out(1, 0).imag();
+    }
+    return M;
+}
+
 Mueller mueller_reflection(double cos_i, double eta) {
     const auto f = fresnel_amplitudes(cos_i, eta);
     return jones_diagonal_to_mueller(f.rs, f.rp);
