@@ -188,3 +188,65 @@ std::optional<Scatter> sample_branch(const Material& m, const Interaction& in, R
 }
 
 }  // namespace refract
+
+namespace refract {
+
+namespace {
+
+// The beam of `s` that is (not) transmitted, travels as `wave` and runs closest to `dir`.
+const biref::Beam* reverse_beam(const biref::InterfaceSplit& s, bool transmitted, biref::Wave wave, const Vec3& dir) {
+    const biref::Beam* best = nullptr;
+    for (int i = 0; i < s.count; ++i) {
+        const biref::Beam& b = s.beam[static_cast<size_t>(i)];
+        if (b.transmitted == transmitted && b.wave == wave && (!best || b.dir.dot(dir) > best->dir.dot(dir))) best = &b;
+    }
+    return best;
+}
+
+}  // namespace
+
+Interaction interact(const material::Uniaxial& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    const biref::Medium air{1.0, 1.0, Vec3::Zero()};
+    const biref::Medium crystal{m.n_o(c.wavelength_nm), m.n_e(c.wavelength_nm), m.optic_axis};
+    const biref::Medium& from = h.entering ? air : crystal;
+    const biref::Medium& to = h.entering ? crystal : air;
+    // A ray inside the crystal travels as o or e (a ray not known as either, as o).
+    const biref::Wave w_in = h.entering ? biref::Wave::Isotropic
+                                        : (c.wave == biref::Wave::Isotropic ? biref::Wave::Ordinary : c.wave);
+    const biref::InterfaceSplit split = biref::split_at_interface(from, w_in, to, ray.dir, h.normal);
+    Interaction n;
+    for (int i = 0; i < split.count; ++i) {
+        const biref::Beam& b = split.beam[static_cast<size_t>(i)];
+        if (b.power <= 0) continue;
+        const Vec3 colour = b.transmitted ? m.filter : Vec3(1, 1, 1);
+        const size_t k = static_cast<size_t>(n.branches++);
+        Branch& br = n.branch[k];
+        br.ray = Ray{h.hit.point, b.dir};
+        br.wave = b.wave;
+        // The threshold keeps natural light's weights in both models (as the dielectric).
+        br.bailout_factor = b.power * colour.maxCoeff();
+        br.factor = c.exact ? colour : Vec3(b.power * colour);
+        n.transmitted[k] = b.transmitted;
+        if (!b.transmitted) n.reflectance += b.power;
+        if (!c.exact) continue;
+        if (!c.adjoint) {
+            n.mueller[k] = polar::jones_to_mueller(b.J);
+            br.frame_parent = split.x_in;
+            br.frame_child = b.x;
+            continue;
+        }
+        // Eye pass: light arriving along the child's ray (reversed) and leaving along the
+        // parent's, in the wave the parent travels as.
+        const biref::Medium& child_side = b.transmitted ? to : from;
+        const biref::Medium& other = b.transmitted ? from : to;
+        const Vec3 n_child = b.transmitted ? Vec3(-h.normal) : h.normal;
+        const biref::InterfaceSplit rev = biref::split_at_interface(child_side, b.wave, other, -b.dir, n_child);
+        const biref::Beam* rb = reverse_beam(rev, b.transmitted, w_in, -ray.dir);
+        n.mueller[k] = rb ? polar::jones_to_mueller(rb->J) : polar::Mueller(polar::Mueller::Zero());
+        br.frame_parent = rb ? rb->x : split.x_in;
+        br.frame_child = rev.x_in;
+    }
+    return n;
+}
+
+}  // namespace refract
