@@ -478,7 +478,10 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
     if (compat == "physical") s.compat = Compat::Physical;
     else if (compat == "povray") s.compat = Compat::PovRay;
     else r.fail_at("compat", "unknown mode '" + compat + "' (physical, povray)");
-    if (r.has("spectral")) s.spectral = parse_spectral(r.child("spectral"), file);
+    // `"spectral": false`: RGB rays only, even with dispersive or uniaxial materials (their
+    // index at the sodium D line).
+    if (r.has("spectral") && !(r.raw("spectral").is_boolean() && !r.raw("spectral").get<bool>()))
+        s.spectral = parse_spectral(r.child("spectral"), file);
     if (r.has("light_pass")) s.light_pass = parse_light_pass(r.child("light_pass"));
     if (r.has("polarisation")) parse_polarisation(r, s);
     return s;
@@ -587,8 +590,12 @@ Scene parse_scene(const json& j, const std::string& file) {
     }
     if (root.has("render")) s.settings = parse_settings(root.child("render"), file);
     apply_light_spectra(s, root);
+    const bool rgb_only = root.has("render") && root.child("render").has("spectral") &&
+                          root.child("render").raw("spectral").is_boolean() &&
+                          !root.child("render").raw("spectral").get<bool>();
     for (const Material& m : s.materials)
-        if ((m.dielectric() && m.dielectric()->dispersion) || m.is<material::Uniaxial>()) s.settings.spectral.enabled = true;
+        if (!rgb_only && ((m.dielectric() && m.dielectric()->dispersion) || m.is<material::Uniaxial>()))
+            s.settings.spectral.enabled = true;
     if (s.settings.light_pass.enabled) s.settings.spectral.enabled = true;  // the maps are read by the spectral pass
     return s;
 }

@@ -27,6 +27,10 @@ const std::vector<Experiment>& all() {
          "Classic optics with the far-field detector against closed forms: a water drop's scattering per path class, "
          "rainbow angles against wavelength, a prism's deviation, a slab's transmittance (s and p)",
          optics_bench::run},
+        {"birefringence",
+         "Double refraction in uniaxial crystals: a calcite plate's double image against walk-off x thickness and through "
+         "an analyser; diamond, cubic zirconia and moissanite brilliants through the table (facet doubling, walk-off)",
+         birefringence::run},
     };
     return list;
 }

@@ -1,0 +1,78 @@
+// Uniaxial crystals in the renderer (material "uniaxial"): the double image of a calcite
+// plate against walk-off × thickness, its two images' orthogonal polarisations, and the
+// experiment's quick mode.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/birefringence.h"
+#include "core/render.h"
+#include "core/scene_json.h"
+#include "core/spectrum/dispersion.h"
+#include "experiments/birefringence.h"
+#include "experiments/common.h"
+#include "tests/render_options.h"
+
+using namespace refract;
+using refract::testing::threads;
+namespace bx = refract::experiments::birefringence;
+
+namespace {
+std::vector<double> middle_row(const RenderResult& r) {
+    std::vector<double> v;
+    for (int i = 0; i < r.image.width; ++i) v.push_back(r.image.at(i, r.image.height / 2).mean());
+    return v;
+}
+}  // namespace
+
+TEST_CASE("Calcite plate doubles a line by walk-off times thickness", "[birefringence]") {
+    const int W = 400, H = 3;
+    const double T = 0.5, dx = 0.8 / W, x0 = -0.4 + dx / 2;
+    const auto c = *spectrum::uniaxial_crystal("calcite");
+    const double no = c.ordinary.n(spectrum::fraunhofer::D), ne = c.extraordinary.n(spectrum::fraunhofer::D);
+    const double want = T * std::tan(biref::walk_off_angle(no, ne, M_PI / 4));
+    const RenderResult nat = render(experiments::scene_from_json(bx::plate_scene(T, 45, W, H, -1), "plate.json"), threads(2));
+    const auto pk = bx::peaks(middle_row(nat), x0, dx);
+    REQUIRE(pk.size() == 2);
+    CHECK(std::abs(std::abs(pk[0].x - pk[1].x) - want) < 0.5 * dx);  // within half a pixel
+    // Both images carry light of the same order (each about half the line's).
+    CHECK(pk[0].intensity > 0.3);
+    CHECK(pk[1].intensity > 0.3);
+    // Without a plate tilt (optic axis along the normal) the line is seen once.
+    const RenderResult one = render(experiments::scene_from_json(bx::plate_scene(T, 0, W, H, -1), "plate0.json"), threads(2));
+    CHECK(bx::peaks(middle_row(one), x0, dx).size() == 1);
+}
+
+TEST_CASE("The two images of a calcite plate are polarised at right angles", "[birefringence]") {
+    const int W = 400, H = 3;
+    const double dx = 0.8 / W, x0 = -0.4 + dx / 2;
+    const auto row = [&](double analyser) {
+        return middle_row(render(experiments::scene_from_json(bx::plate_scene(0.5, 45, W, H, analyser), "p.json"), threads(2)));
+    };
+    const std::vector<double> natural = row(-1);
+    const auto nat = bx::peaks(natural, x0, dx);
+    REQUIRE(nat.size() == 2);
+    const double xo = std::abs(nat[0].x) < std::abs(nat[1].x) ? nat[0].x : nat[1].x;  // the o image, over the line
+    const double xe = xo == nat[0].x ? nat[1].x : nat[0].x;
+    const auto a0 = bx::peaks(row(0), x0, dx), a90 = bx::peaks(row(90), x0, dx);
+    // Analyser across the line (0°): the e image only (its field lies in the plane of the
+    // optic axis and the normal); along the line (90°): the o image only.
+    REQUIRE(a0.size() == 1);
+    REQUIRE(a90.size() == 1);
+    CHECK(std::abs(a0[0].x - xe) < 2 * dx);
+    CHECK(std::abs(a90[0].x - xo) < 2 * dx);
+    // The analyser passes all of the e image's light; in natural light that pixel also sees
+    // the paper through the o ray, about half the paper's level seen through the plate
+    // (`natural.front()`, far from the line, is the paper through both rays).
+    const double e_nat = nat[0].x == xe ? nat[0].intensity : nat[1].intensity;
+    CHECK(a0[0].intensity == Approx(e_nat - 0.5 * natural.front()).epsilon(0.01));
+}
+
+TEST_CASE("Uniaxial scene field errors name the field", "[birefringence]") {
+    nlohmann::json j = bx::plate_scene(0.5, 45, 8, 2, -1);
+    j["materials"]["calcite"]["crystal"] = "ruby";
+    CHECK_THROWS_WITH(parse_scene(j, "bad.json"), Catch::Matchers::Contains("/materials/calcite/crystal") &&
+                                                      Catch::Matchers::Contains("calcite, quartz, sapphire, moissanite"));
+    j["materials"]["calcite"] = {{"type", "uniaxial"}, {"crystal", "calcite"}, {"optic_axis", {0, 0, 0}}};
+    CHECK_THROWS_WITH(parse_scene(j, "bad.json"), Catch::Matchers::Contains("optic_axis"));
+}
