@@ -4,6 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <unistd.h>
+namespace fs_path_helper = std::filesystem;
 
 #include "core/birefringence.h"
 #include "core/render.h"
@@ -75,4 +78,35 @@ TEST_CASE("Uniaxial scene field errors name the field", "[birefringence]") {
                                                       Catch::Matchers::Contains("calcite, quartz, sapphire, moissanite"));
     j["materials"]["calcite"] = {{"type", "uniaxial"}, {"crystal", "calcite"}, {"optic_axis", {0, 0, 0}}};
     CHECK_THROWS_WITH(parse_scene(j, "bad.json"), Catch::Matchers::Contains("optic_axis"));
+}
+
+TEST_CASE("Birefringence experiment (quick): plate separation, analyser, moissanite walk-off and doubling",
+          "[experiments][birefringence]") {
+    experiments::ExperimentOptions opt;
+    opt.threads = 2;
+    opt.quick = true;
+    const bx::Result r = bx::compute(opt);
+    const bx::Plate& p = r.plate;
+    CHECK(p.rho_deg == Approx(6.23).margin(0.01));
+    const double pixel = 0.8 / static_cast<double>(p.x.size());
+    CHECK(std::abs(p.separation_measured - p.separation_theory) < pixel);
+    // Analyser at 0°: the o image goes dark (only the paper seen through the e ray is left),
+    // at 90° the e image.
+    CHECK(p.o_intensity[1] < 0.1 * p.o_intensity[0]);
+    CHECK(p.e_intensity[2] < 0.1 * p.e_intensity[0]);
+    CHECK(p.e_intensity[1] > 0.9 * p.e_intensity[0] - 0.05);
+    REQUIRE(r.gems.size() == 4);
+    CHECK(r.gems[0].changed_fraction == 0);  // diamond: isotropic
+    const auto& normal = r.gems[2];
+    const auto& tilted = r.gems[3];
+    CHECK(tilted.rho_traced_deg == Approx(tilted.rho_theory_deg).margin(1e-9));
+    CHECK(tilted.offset_traced == Approx(tilted.offset_theory).margin(1e-9));
+    CHECK(normal.rho_traced_deg < 1e-9);  // along the optic axis: one ray
+    CHECK(tilted.changed_fraction > normal.changed_fraction);
+    CHECK(normal.changed_fraction > 0.02);  // internal reflections run off the axis and double
+    const fs_path_helper::path dir = fs_path_helper::temp_directory_path() / ("refract-test-birefringence-" + std::to_string(::getpid()));
+    bx::write(r, dir.string());
+    for (const char* f : {"plate.csv", "plate_profile.csv", "gems.csv", "plate.png", "summary.md", "plate.json"})
+        CHECK(fs_path_helper::exists(dir / f));
+    fs_path_helper::remove_all(dir);
 }
