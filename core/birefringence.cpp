@@ -124,7 +124,7 @@ InterfaceSplit split_at_interface(const Medium& from, Wave wave, const Medium& t
     A.col(1) = rows(reflected[1]);
     A.col(2) = -rows(transmitted[0]);
     A.col(3) = -rows(transmitted[1]);
-    const Eigen::FullPivLU<Eigen::Matrix4cd> lu(A);
+    const Eigen::PartialPivLU<Eigen::Matrix4cd> lu(A);
 
     // Incident basis: the s and p waves (isotropic), or the one crystal wave.
     const bool iso_in = !from.uniaxial();
@@ -184,6 +184,13 @@ InterfaceSplit split_at_interface(const Medium& from, Wave wave, const Medium& t
     add_beam(reflected, 0, false, from);
     add_beam(transmitted, 2, true, to);
     return out;
+}
+
+Jones reversed(const Jones& J) {
+    Jones R = J.transpose();
+    R(0, 1) = -R(0, 1);
+    R(1, 0) = -R(1, 0);
+    return R;
 }
 
 }  // namespace refract::biref

@@ -107,4 +107,11 @@ struct InterfaceSplit {
 InterfaceSplit split_at_interface(const Medium& from, Wave wave, const Medium& to, const Vec3& dir,
                                   const Vec3& normal);
 
+// Reciprocity (Lorentz; for lossless media with symmetric ε the power-normalised
+// scattering matrix is symmetric, Born & Wolf §1.5; Weidlich & Wilkie §5): light running
+// backwards along a beam of Jones matrix J (in the frames x̂_in, x̂_beam) and leaving along
+// the reversed incident ray has Jones matrix D Jᵀ D, D = diag(1, −1), in the polar frames
+// of the reversed rays with the same x̂ (ŷ = k̂ × x̂ flips with k̂).
+Jones reversed(const Jones& J);
+
 }  // namespace refract::biref

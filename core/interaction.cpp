@@ -191,20 +191,6 @@ std::optional<Scatter> sample_branch(const Material& m, const Interaction& in, R
 
 namespace refract {
 
-namespace {
-
-// The beam of `s` that is (not) transmitted, travels as `wave` and runs closest to `dir`.
-const biref::Beam* reverse_beam(const biref::InterfaceSplit& s, bool transmitted, biref::Wave wave, const Vec3& dir) {
-    const biref::Beam* best = nullptr;
-    for (int i = 0; i < s.count; ++i) {
-        const biref::Beam& b = s.beam[static_cast<size_t>(i)];
-        if (b.transmitted == transmitted && b.wave == wave && (!best || b.dir.dot(dir) > best->dir.dot(dir))) best = &b;
-    }
-    return best;
-}
-
-}  // namespace
-
 Interaction interact(const material::Uniaxial& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
     const biref::Medium air{1.0, 1.0, Vec3::Zero()};
     const biref::Medium crystal{m.n_o(c.wavelength_nm), m.n_e(c.wavelength_nm), m.optic_axis};
@@ -229,22 +215,11 @@ Interaction interact(const material::Uniaxial& m, const SurfaceHit& h, const Ray
         n.transmitted[k] = b.transmitted;
         if (!b.transmitted) n.reflectance += b.power;
         if (!c.exact) continue;
-        if (!c.adjoint) {
-            n.mueller[k] = polar::jones_to_mueller(b.J);
-            br.frame_parent = split.x_in;
-            br.frame_child = b.x;
-            continue;
-        }
-        // Eye pass: light arriving along the child's ray (reversed) and leaving along the
-        // parent's, in the wave the parent travels as.
-        const biref::Medium& child_side = b.transmitted ? to : from;
-        const biref::Medium& other = b.transmitted ? from : to;
-        const Vec3 n_child = b.transmitted ? Vec3(-h.normal) : h.normal;
-        const biref::InterfaceSplit rev = biref::split_at_interface(child_side, b.wave, other, -b.dir, n_child);
-        const biref::Beam* rb = reverse_beam(rev, b.transmitted, w_in, -ray.dir);
-        n.mueller[k] = rb ? polar::jones_to_mueller(rb->J) : polar::Mueller(polar::Mueller::Zero());
-        br.frame_parent = rb ? rb->x : split.x_in;
-        br.frame_child = rev.x_in;
+        // An eye pass needs light arriving along the child's ray (reversed) and leaving along
+        // the parent's: by reciprocity the Jones matrix biref::reversed(J), same frames.
+        n.mueller[k] = polar::jones_to_mueller(c.adjoint ? biref::reversed(b.J) : b.J);
+        br.frame_parent = split.x_in;
+        br.frame_child = b.x;
     }
     return n;
 }

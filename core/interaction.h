@@ -172,7 +172,7 @@ Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const R
 // light: each branch's factor is its power for unpolarised incidence (a crystal wave: the
 // power of that wave) times the filter on transmission; exact polarisation: its Mueller
 // matrix, for an eye pass (c.adjoint) the one of the reversed path, light arriving along
-// the child's ray and leaving along the parent's.
+// the child's ray and leaving along the parent's (biref::reversed, reciprocity).
 Interaction interact(const material::Uniaxial& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 
