@@ -56,7 +56,8 @@ public:
                 s.facet_label = c->labels[static_cast<size_t>(h.hit.facet)];
         s.entering = h.entering;
         hits_[key(h.hit.point)] = s.id;
-        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h));
+        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h), false, e.wave, wavelength(e),
+                                                std::is_same_v<P, EyeStokes>);
         if (in.leaf) return false;  // leaf() names the event
         if (const auto* d = h.material->dielectric()) {
             const double ior = band_ior(e, h) > 0 ? band_ior(e, h) : d->ior;
