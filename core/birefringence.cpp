@@ -17,7 +17,9 @@ Vec3c bcross(const Vec3c& a, const Vec3c& b) {
     return Vec3c(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
 }
 
-Vec3c unit_hermitian(const Vec3c& v) { return v / v.norm(); }
+// |v| (Hermitian) without the overflow-safe hypot of Eigen's complex norm.
+double hnorm(const Vec3c& v) { return std::sqrt(v.squaredNorm()); }
+Vec3c unit_hermitian(const Vec3c& v) { return v / hnorm(v); }
 
 // A unit vector ⟂ k (the fallback ŝ at normal incidence): the axis least aligned with k,
 // projected.
@@ -40,15 +42,19 @@ cplx normal_component(double n, double t2) {
 }
 
 PlaneWave make_wave(Wave w, bool s_like, const Vec3c& k, const Vec3c& E_dir, bool evanescent, const Vec3& N) {
-    PlaneWave p{w, s_like, k, unit_hermitian(E_dir), Vec3c(), evanescent, Vec3::Zero(), 0.0};
-    p.H = bcross(k, p.E);
-    if (!evanescent) {
-        p.E = cplx_of(p.E.real());  // a real k gives a real field (up to rounding)
+    PlaneWave p{w, s_like, k, Vec3c(), Vec3c(), evanescent, Vec3::Zero(), 0.0};
+    if (evanescent) {
+        p.E = unit_hermitian(E_dir);
         p.H = bcross(k, p.E);
-        const Vec3 S = p.E.real().cross(p.H.real());  // Re(E × H*) for real fields
-        p.ray = S.normalized();
-        p.flux = 0.5 * S.dot(N);
+        return p;
     }
+    // A real k gives a real field (the imaginary parts are exactly 0).
+    const Vec3 E = E_dir.real().normalized(), H = k.real().cross(E);
+    p.E = cplx_of(E);
+    p.H = cplx_of(H);
+    const Vec3 S = E.cross(H);  // Re(E × H*)
+    p.ray = S.normalized();
+    p.flux = 0.5 * S.dot(N);
     return p;
 }
 
@@ -85,7 +91,7 @@ std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3&
     const cplx qo = normal_component(m.n_o, t.squaredNorm());
     const Vec3c ko = tc + qo * Nc;
     Vec3c Eo = bcross(ko, a);
-    if (Eo.norm() <= 1e-12 * m.n_o) Eo = sc;
+    if (hnorm(Eo) <= 1e-12 * m.n_o) Eo = sc;
     // Extraordinary: kᵀAk = 1 with A = I/n_e² + (1/n_o² − 1/n_e²) â âᵀ; the root whose ray
     // A k has A k · N = b + q c = +sqrt(disc) > 0.
     const double ie = 1.0 / (m.n_e * m.n_e), d = 1.0 / (m.n_o * m.n_o) - ie;
@@ -98,7 +104,7 @@ std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3&
     const Vec3c ke = tc + qe * Nc;
     // D ⟂ k in the plane of k and â: D = â (k·k) − k (k·â); E = ε⁻¹ D.
     Vec3c De = a * bdot(ke, ke) - ke * bdot(ke, a);
-    if (De.norm() <= 1e-12 * bdot(ke, ke).real()) De = bcross(ke, unit_hermitian(Eo));
+    if (hnorm(De) <= 1e-12 * bdot(ke, ke).real()) De = bcross(ke, unit_hermitian(Eo));
     return {make_wave(Wave::Ordinary, false, ko, Eo, qo.imag() != 0, N),
             make_wave(Wave::Extraordinary, false, ke, eps_inverse(m, De), disc < 0, N)};
 }
