@@ -44,7 +44,9 @@ Mueller jones_to_mueller(const Eigen::Matrix2cd& J) {
     // (½(K00 + K11), ½(K00 − K11), Re K10, Im K10), K Hermitian. Written out per σ_j.
     using c = std::complex<double>;
     const c a = J(0, 0), b = J(0, 1), cc = J(1, 0), d = J(1, 1);
-    const double A = std::norm(a), B = std::norm(b), C = std::norm(cc), D = std::norm(d);
+    // |z|² as re² + im² (libstdc++'s std::norm goes through hypot).
+    const auto abs2 = [](c z) { return z.real() * z.real() + z.imag() * z.imag(); };
+    const double A = abs2(a), B = abs2(b), C = abs2(cc), D = abs2(d);
     const c ab = a * std::conj(b), cd = cc * std::conj(d);
     Mueller M;
     const auto column = [&M](int j, double k00, double k11, c k10) {
