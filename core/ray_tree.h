@@ -34,7 +34,7 @@ struct TreeEntryT {
     Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
     double bailout = 1.0;  // the scalar the threshold is compared with
     // Counters in 16 bits (max_depth <= 10000, bands <= 1003): a list entry of the
-    // natural-light walk is 104 bytes.
+    // natural-light walk is 112 bytes (104 before the uniaxial crystals' `wave`).
     std::int16_t depth = 0;  // surface interactions before this ray
     std::int16_t reflections = 0, transmissions = 0;
     std::int16_t band = -1;  // spectral band of the ray; −1: an RGB ray

@@ -78,6 +78,11 @@ TEST_CASE("Uniaxial scene field errors name the field", "[birefringence]") {
                                                       Catch::Matchers::Contains("calcite, quartz, sapphire, moissanite"));
     j["materials"]["calcite"] = {{"type", "uniaxial"}, {"crystal", "calcite"}, {"optic_axis", {0, 0, 0}}};
     CHECK_THROWS_WITH(parse_scene(j, "bad.json"), Catch::Matchers::Contains("optic_axis"));
+    // The stochastic integrator samples one direction per hit and keeps no o/e wave: refused.
+    nlohmann::json k = bx::plate_scene(0.5, 45, 8, 2, -1);
+    k["render"]["integrator"] = "stochastic";
+    CHECK_THROWS_WITH(render(parse_scene(k, "stochastic.json"), threads(1)),
+                      Catch::Matchers::Contains("material 'calcite'") && Catch::Matchers::Contains("fresnel-tree"));
 }
 
 TEST_CASE("Birefringence experiment (quick): plate separation, analyser, moissanite walk-off and doubling",
