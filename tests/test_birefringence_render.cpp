@@ -115,3 +115,19 @@ TEST_CASE("Birefringence experiment (quick): plate separation, analyser, moissan
         CHECK(fs_path_helper::exists(dir / f));
     fs_path_helper::remove_all(dir);
 }
+
+TEST_CASE("Spectral eye pass doubles the line through calcite at every wavelength", "[birefringence]") {
+    // Three wavelengths (450, 550, 650 nm), each with its own n_o and n_e: the two images
+    // stay T tan rho apart (calcite's walk-off changes by about 4 % over the range, a pixel).
+    const int W = 400, H = 3;
+    const double dx = 0.8 / W, x0 = -0.4 + dx / 2;
+    nlohmann::json j = bx::plate_scene(0.5, 45, W, H, -1);
+    j["render"]["spectral"] = {{"range", {450, 650}}, {"step", 100}};
+    const Scene s = parse_scene(j, "spectral_plate.json");
+    REQUIRE(s.settings.spectral.enabled);
+    const auto pk = bx::peaks(middle_row(render(s, threads(2))), x0, dx);
+    REQUIRE(pk.size() == 2);
+    const auto c = *spectrum::uniaxial_crystal("calcite");
+    const double want = 0.5 * std::tan(biref::walk_off_angle(c.ordinary.n(550), c.extraordinary.n(550), M_PI / 4));
+    CHECK(std::abs(std::abs(pk[0].x - pk[1].x) - want) < 2 * dx);
+}
