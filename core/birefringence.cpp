@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include <Eigen/LU>
 
 namespace refract::biref {
 
@@ -41,6 +40,12 @@ cplx normal_component(double n, double t2) {
     return d >= 0 ? cplx(std::sqrt(d), 0) : cplx(0, std::sqrt(-d));
 }
 
+// A propagating wave: real k and field; the ray along E × H, the flux ½ (E × H)·N.
+PlaneWave real_wave(Wave w, bool s_like, const Vec3& k, const Vec3& E_dir, const Vec3& N) {
+    const Vec3 E = E_dir.normalized(), H = k.cross(E), S = E.cross(H);
+    return PlaneWave{w, s_like, cplx_of(k), cplx_of(E), cplx_of(H), false, S.normalized(), 0.5 * S.dot(N)};
+}
+
 PlaneWave make_wave(Wave w, bool s_like, const Vec3c& k, const Vec3c& E_dir, bool evanescent, const Vec3& N) {
     PlaneWave p{w, s_like, k, Vec3c(), Vec3c(), evanescent, Vec3::Zero(), 0.0};
     if (evanescent) {
@@ -56,6 +61,32 @@ PlaneWave make_wave(Wave w, bool s_like, const Vec3c& k, const Vec3c& E_dir, boo
     p.ray = S.normalized();
     p.flux = 0.5 * S.dot(N);
     return p;
+}
+
+// Solves A X = B in place (B becomes X) by Gaussian elimination with partial pivoting on
+// |a|² (no hypot, no complex division but one reciprocal per pivot). A is the 4×4 system
+// of the boundary conditions, which is regular for any pair of media.
+void solve4(Eigen::Matrix4cd& A, Eigen::Matrix<cplx, 4, 2>& B) {
+    const auto abs2 = [](cplx z) { return z.real() * z.real() + z.imag() * z.imag(); };
+    for (int c = 0; c < 4; ++c) {
+        int p = c;
+        for (int r = c + 1; r < 4; ++r)
+            if (abs2(A(r, c)) > abs2(A(p, c))) p = r;
+        if (p != c) {
+            A.row(c).swap(A.row(p));
+            B.row(c).swap(B.row(p));
+        }
+        const cplx inv = std::conj(A(c, c)) / abs2(A(c, c));
+        for (int r = c + 1; r < 4; ++r) {
+            const cplx f = A(r, c) * inv;
+            for (int k = c + 1; k < 4; ++k) A(r, k) -= f * A(c, k);
+            B.row(r) -= f * B.row(c);
+        }
+    }
+    for (int c = 3; c >= 0; --c) {
+        for (int k = c + 1; k < 4; ++k) B.row(c) -= A(c, k) * B.row(k);
+        B.row(c) *= std::conj(A(c, c)) / abs2(A(c, c));
+    }
 }
 
 }  // namespace
@@ -79,34 +110,54 @@ Vec3 wave_vector_of_ray(const Medium& m, Wave w, const Vec3& ray) {
 
 std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3& N, const Vec3& s) {
     const Vec3c tc = cplx_of(t), Nc = cplx_of(N), sc = cplx_of(s);
+    // Propagating waves (real q) are built in real arithmetic, evanescent ones in complex.
     if (!m.uniaxial()) {
         const cplx q = normal_component(m.n_o, t.squaredNorm());
+        if (q.imag() == 0) {
+            const Vec3 k = t + q.real() * N;
+            return {real_wave(Wave::Isotropic, true, k, s, N), real_wave(Wave::Isotropic, false, k, k.cross(s), N)};
+        }
         const Vec3c k = tc + q * Nc;
-        const bool ev = q.imag() != 0;
-        return {make_wave(Wave::Isotropic, true, k, sc, ev, N),
-                make_wave(Wave::Isotropic, false, k, bcross(k, sc) / m.n_o, ev, N)};
+        return {make_wave(Wave::Isotropic, true, k, sc, true, N),
+                make_wave(Wave::Isotropic, false, k, bcross(k, sc) / m.n_o, true, N)};
     }
-    const Vec3c a = cplx_of(m.axis);
+    const Vec3& a = m.axis;
+    std::array<PlaneWave, 2> w;
     // Ordinary: |k| = n_o, E ∥ k × â (the s direction when k ∥ â).
     const cplx qo = normal_component(m.n_o, t.squaredNorm());
-    const Vec3c ko = tc + qo * Nc;
-    Vec3c Eo = bcross(ko, a);
-    if (hnorm(Eo) <= 1e-12 * m.n_o) Eo = sc;
+    Vec3 o_dir = s;  // the o field's direction when propagating (the e fallback uses it)
+    if (qo.imag() == 0) {
+        const Vec3 ko = t + qo.real() * N;
+        const Vec3 Eo = ko.cross(a);
+        if (Eo.norm() > 1e-12 * m.n_o) o_dir = Eo.normalized();
+        w[0] = real_wave(Wave::Ordinary, false, ko, o_dir, N);
+    } else {
+        const Vec3c ko = tc + qo * Nc;
+        Vec3c Eo = bcross(ko, cplx_of(a));
+        if (hnorm(Eo) <= 1e-12 * m.n_o) Eo = sc;
+        w[0] = make_wave(Wave::Ordinary, false, ko, Eo, true, N);
+    }
     // Extraordinary: kᵀAk = 1 with A = I/n_e² + (1/n_o² − 1/n_e²) â âᵀ; the root whose ray
     // A k has A k · N = b + q c = +sqrt(disc) > 0.
     const double ie = 1.0 / (m.n_e * m.n_e), d = 1.0 / (m.n_o * m.n_o) - ie;
-    const double ta = t.dot(m.axis), na = N.dot(m.axis);
+    const double ta = t.dot(a), na = N.dot(a);
     const double b = ie * t.dot(N) + d * ta * na;
     const double c = ie + d * na * na;
     const double cc = ie * t.squaredNorm() + d * ta * ta - 1.0;
     const double disc = b * b - c * cc;
-    const cplx qe = disc >= 0 ? cplx((-b + std::sqrt(disc)) / c, 0) : cplx(-b / c, std::sqrt(-disc) / c);
-    const Vec3c ke = tc + qe * Nc;
     // D ⟂ k in the plane of k and â: D = â (k·k) − k (k·â); E = ε⁻¹ D.
-    Vec3c De = a * bdot(ke, ke) - ke * bdot(ke, a);
-    if (hnorm(De) <= 1e-12 * bdot(ke, ke).real()) De = bcross(ke, unit_hermitian(Eo));
-    return {make_wave(Wave::Ordinary, false, ko, Eo, qo.imag() != 0, N),
-            make_wave(Wave::Extraordinary, false, ke, eps_inverse(m, De), disc < 0, N)};
+    if (disc >= 0) {
+        const Vec3 ke = t + ((-b + std::sqrt(disc)) / c) * N;
+        Vec3 De = a * ke.squaredNorm() - ke * ke.dot(a);
+        if (De.norm() <= 1e-12 * ke.squaredNorm()) De = ke.cross(o_dir);
+        w[1] = real_wave(Wave::Extraordinary, false, ke, eps_inverse(m, cplx_of(De)).real(), N);
+    } else {
+        const Vec3c ke = tc + cplx(-b / c, std::sqrt(-disc) / c) * Nc;
+        Vec3c De = cplx_of(a) * bdot(ke, ke) - ke * bdot(ke, cplx_of(a));
+        if (hnorm(De) <= 1e-12 * std::abs(bdot(ke, ke))) De = bcross(ke, unit_hermitian(w[0].E));
+        w[1] = make_wave(Wave::Extraordinary, false, ke, eps_inverse(m, De), true, N);
+    }
+    return w;
 }
 
 InterfaceSplit split_at_interface(const Medium& from, Wave wave, const Medium& to, const Vec3& dir,
@@ -130,7 +181,6 @@ InterfaceSplit split_at_interface(const Medium& from, Wave wave, const Medium& t
     A.col(1) = rows(reflected[1]);
     A.col(2) = -rows(transmitted[0]);
     A.col(3) = -rows(transmitted[1]);
-    const Eigen::PartialPivLU<Eigen::Matrix4cd> lu(A);
 
     // Incident basis: the s and p waves (isotropic), or the one crystal wave.
     const bool iso_in = !from.uniaxial();
@@ -140,9 +190,10 @@ InterfaceSplit split_at_interface(const Medium& from, Wave wave, const Medium& t
     Eigen::Matrix<cplx, 4, 2> amp = Eigen::Matrix<cplx, 4, 2>::Zero();
     double f_in[2] = {1.0, 1.0};
     for (int b = 0; b < n_in; ++b) {
-        amp.col(b) = lu.solve(Eigen::Vector4cd(-rows(*in[b])));
+        amp.col(b) = -rows(*in[b]);
         f_in[b] = in[b]->flux;
     }
+    solve4(A, amp);
 
     InterfaceSplit out;
     out.x_in = polar::s_axis(normal, dir, s);
