@@ -150,7 +150,8 @@ std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3&
         const Vec3 ke = t + ((-b + std::sqrt(disc)) / c) * N;
         Vec3 De = a * ke.squaredNorm() - ke * ke.dot(a);
         if (De.norm() <= 1e-12 * ke.squaredNorm()) De = ke.cross(o_dir);
-        w[1] = real_wave(Wave::Extraordinary, false, ke, eps_inverse(m, cplx_of(De)).real(), N);
+        const Vec3 Ee = De / (m.n_o * m.n_o) + (1.0 / (m.n_e * m.n_e) - 1.0 / (m.n_o * m.n_o)) * a.dot(De) * a;  // ε⁻¹ D
+        w[1] = real_wave(Wave::Extraordinary, false, ke, Ee, N);
     } else {
         const Vec3c ke = tc + cplx(-b / c, std::sqrt(-disc) / c) * Nc;
         Vec3c De = cplx_of(a) * bdot(ke, ke) - ke * bdot(ke, cplx_of(a));
