@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-
 namespace refract::biref {
 
 namespace {
@@ -46,21 +45,10 @@ PlaneWave real_wave(Wave w, bool s_like, const Vec3& k, const Vec3& E_dir, const
     return PlaneWave{w, s_like, cplx_of(k), cplx_of(E), cplx_of(H), false, S.normalized(), 0.5 * S.dot(N)};
 }
 
-PlaneWave make_wave(Wave w, bool s_like, const Vec3c& k, const Vec3c& E_dir, bool evanescent, const Vec3& N) {
-    PlaneWave p{w, s_like, k, Vec3c(), Vec3c(), evanescent, Vec3::Zero(), 0.0};
-    if (evanescent) {
-        p.E = unit_hermitian(E_dir);
-        p.H = bcross(k, p.E);
-        return p;
-    }
-    // A real k gives a real field (the imaginary parts are exactly 0).
-    const Vec3 E = E_dir.real().normalized(), H = k.real().cross(E);
-    p.E = cplx_of(E);
-    p.H = cplx_of(H);
-    const Vec3 S = E.cross(H);  // Re(E × H*)
-    p.ray = S.normalized();
-    p.flux = 0.5 * S.dot(N);
-    return p;
+// An evanescent wave (complex k): unit (Hermitian) field, no ray, no flux across N.
+PlaneWave evanescent_wave(Wave w, bool s_like, const Vec3c& k, const Vec3c& E_dir) {
+    const Vec3c E = unit_hermitian(E_dir);
+    return PlaneWave{w, s_like, k, E, bcross(k, E), true, Vec3::Zero(), 0.0};
 }
 
 // Solves A X = B in place (B becomes X) by Gaussian elimination with partial pivoting on
@@ -118,8 +106,7 @@ std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3&
             return {real_wave(Wave::Isotropic, true, k, s, N), real_wave(Wave::Isotropic, false, k, k.cross(s), N)};
         }
         const Vec3c k = tc + q * Nc;
-        return {make_wave(Wave::Isotropic, true, k, sc, true, N),
-                make_wave(Wave::Isotropic, false, k, bcross(k, sc) / m.n_o, true, N)};
+        return {evanescent_wave(Wave::Isotropic, true, k, sc), evanescent_wave(Wave::Isotropic, false, k, bcross(k, sc))};
     }
     const Vec3& a = m.axis;
     std::array<PlaneWave, 2> w;
@@ -135,7 +122,7 @@ std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3&
         const Vec3c ko = tc + qo * Nc;
         Vec3c Eo = bcross(ko, cplx_of(a));
         if (hnorm(Eo) <= 1e-12 * m.n_o) Eo = sc;
-        w[0] = make_wave(Wave::Ordinary, false, ko, Eo, true, N);
+        w[0] = evanescent_wave(Wave::Ordinary, false, ko, Eo);
     }
     // Extraordinary: kᵀAk = 1 with A = I/n_e² + (1/n_o² − 1/n_e²) â âᵀ; the root whose ray
     // A k has A k · N = b + q c = +sqrt(disc) > 0.
@@ -156,7 +143,7 @@ std::array<PlaneWave, 2> plane_waves(const Medium& m, const Vec3& t, const Vec3&
         const Vec3c ke = tc + cplx(-b / c, std::sqrt(-disc) / c) * Nc;
         Vec3c De = cplx_of(a) * bdot(ke, ke) - ke * bdot(ke, cplx_of(a));
         if (hnorm(De) <= 1e-12 * std::abs(bdot(ke, ke))) De = bcross(ke, unit_hermitian(w[0].E));
-        w[1] = make_wave(Wave::Extraordinary, false, ke, eps_inverse(m, De), true, N);
+        w[1] = evanescent_wave(Wave::Extraordinary, false, ke, eps_inverse(m, De));
     }
     return w;
 }

@@ -58,9 +58,9 @@ double walk_off_angle(double n_o, double n_e, double theta);
 // n_o·ray for o (or any wave in an isotropic medium); for e, k ∥ ε⁻¹·ray scaled to n(θ).
 Vec3 wave_vector_of_ray(const Medium& m, Wave w, const Vec3& ray);
 
-// One plane wave of a medium: its mode, complex wave vector (|k|² = n² in the bilinear
-// sense; complex when evanescent), fields E and H = k × E for unit Hermitian norm of D,
-// and for a propagating wave its unit ray direction (along Re(E × H*)).
+// One plane wave of a medium: its mode, complex wave vector (k·k = n² in the bilinear
+// sense; complex when evanescent), field E of unit (Hermitian) norm and H = k × E, and for
+// a propagating wave its unit ray direction (along Re(E × H*)).
 struct PlaneWave {
     Wave wave;     // Ordinary/Extraordinary in a crystal; Isotropic for the s and p waves
     bool s_like;   // isotropic medium: the s wave (else p)
