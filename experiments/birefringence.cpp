@@ -141,6 +141,42 @@ std::vector<Peak> peaks(const std::vector<double>& profile, double x0, double dx
     return out;
 }
 
+std::vector<FireRow> fire_spread(const std::vector<double>& thetas_deg) {
+    using spectrum::fraunhofer::B;
+    using spectrum::fraunhofer::G;
+    const auto& diamond = spectrum::catalogue("diamond");
+    const auto moissanite = *spectrum::uniaxial_crystal("moissanite");
+    const double crown = 34.5 * kDeg;
+    const Vec3 n(0, 0, -1);                                       // facet normal, on the inside
+    const Vec3 axis(std::sin(crown), 0, std::cos(crown));         // the table normal
+    const biref::Medium air{1.0, 1.0, Vec3::Zero()};
+    const auto exit_dir = [&](const biref::Medium& m, biref::Wave w, const Vec3& d) {
+        const auto s = biref::split_at_interface(m, w, air, d, n);
+        for (int i = 0; i < s.count; ++i)
+            if (s.beam[static_cast<size_t>(i)].transmitted) return s.beam[static_cast<size_t>(i)].dir;
+        return Vec3(Vec3::Zero());
+    };
+    const auto angle = [](const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) / kDeg; };
+    std::vector<FireRow> rows;
+    for (const double t : thetas_deg) {
+        FireRow r;
+        r.theta_deg = t;
+        const Vec3 d(std::sin(t * kDeg), 0, std::cos(t * kDeg));
+        const biref::Medium dG{diamond.n(G), diamond.n(G), Vec3::Zero()}, dB{diamond.n(B), diamond.n(B), Vec3::Zero()};
+        r.diamond_deg = angle(exit_dir(dG, biref::Wave::Isotropic, d), exit_dir(dB, biref::Wave::Isotropic, d));
+        r.diamond_closed_deg = (std::asin(diamond.n(G) * std::sin(t * kDeg)) - std::asin(diamond.n(B) * std::sin(t * kDeg))) / kDeg;
+        const biref::Medium mG{moissanite.ordinary.n(G), moissanite.extraordinary.n(G), axis};
+        const biref::Medium mB{moissanite.ordinary.n(B), moissanite.extraordinary.n(B), axis};
+        const std::array<Vec3, 4> e{exit_dir(mG, biref::Wave::Ordinary, d), exit_dir(mB, biref::Wave::Ordinary, d),
+                                    exit_dir(mG, biref::Wave::Extraordinary, d), exit_dir(mB, biref::Wave::Extraordinary, d)};
+        r.moissanite_o_deg = angle(e[0], e[1]);
+        for (size_t i = 0; i < 4; ++i)
+            for (size_t j = i + 1; j < 4; ++j) r.moissanite_oe_deg = std::max(r.moissanite_oe_deg, angle(e[i], e[j]));
+        rows.push_back(r);
+    }
+    return rows;
+}
+
 Result compute(const ExperimentOptions& opt) {
     Result r;
     r.quick = opt.quick;
@@ -226,6 +262,8 @@ Result compute(const ExperimentOptions& opt) {
         }
         r.gems.push_back(std::move(row));
     }
+    // ---- 3. Fire ----
+    r.fire = fire_spread({5, 10, 15, 20});
     return r;
 }
 
@@ -258,6 +296,11 @@ void write(const Result& r, const std::string& dir) {
         save_json(dir, "gem_" + g.id + ".json", g.scene);
     }
     write_csv(dir + "/gems.csv", gems);
+    Csv fire{{"theta_in_deg", "diamond_deg", "diamond_closed_form_deg", "moissanite_o_deg", "moissanite_o_and_e_deg"}, {}};
+    for (const FireRow& f : r.fire)
+        fire.add({fmt(f.theta_deg), fmt(f.diamond_deg), fmt(f.diamond_closed_deg), fmt(f.moissanite_o_deg),
+                  fmt(f.moissanite_oe_deg)});
+    write_csv(dir + "/fire.csv", fire);
 
     if (gnuplot_available()) {
         std::ostringstream b;
@@ -291,7 +334,12 @@ void write(const Result& r, const std::string& dir) {
        << " `offset`: the e ray's lateral offset from the o ray where it next meets the pavilion, against depth × tan ρ.\n\n"
        << gems.markdown(4) << "\n";
     for (const GemRow& g : r.gems) md << "![" << g.id << "](gem_" << g.id << ".png) ";
-    md << "\n\nNot measured here: the angular spread of moissanite's fire next to diamond's (left for later).\n";
+    md << "\n\n## Angular spread of fire\n\n"
+       << "A ray inside the gem meets a crown facet (34.5° from the table; moissanite's optic axis along the table"
+       << " normal) at internal incidence θ and leaves: the angle between its exit directions at the G (430.8 nm) and"
+       << " B (686.7 nm) lines. Moissanite leaves twice per wavelength (o and e); `moissanite_o_and_e` is the widest"
+       << " angle among the four exits.\n\n"
+       << fire.markdown(4) << "\n";
     write_text_atomic(dir + "/summary.md", md.str());
 }
 

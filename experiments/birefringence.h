@@ -6,7 +6,9 @@
 //  2. round brilliants of diamond, cubic zirconia and moissanite (optic axis along the
 //     table normal and tilted) seen from above through the table: the share of table
 //     pixels that change when moissanite's double refraction is replaced by its ordinary
-//     index alone (doubled facet edges), and the walk-off of a traced ray against theory.
+//     index alone (doubled facet edges), and the walk-off of a traced ray against theory;
+//  3. fire: the G–B angular spread of a ray leaving through a crown facet, diamond against
+//     moissanite's o and e exits.
 // `compute` measures into a Result; `write` writes CSV, images, figures and summary.md.
 #include <array>
 #include <string>
@@ -55,11 +57,27 @@ struct GemRow {
     nlohmann::json scene;
 };
 
+// Fire: a ray inside the gem meeting a crown facet (34.5° from the table, optic axis along
+// the table normal) at internal incidence θ leaves into the air; the angle between its exit
+// directions at the Fraunhofer G (430.78 nm) and B (686.72 nm) lines. Moissanite has an o and
+// an e exit per wavelength (a ray inside along the same direction travelling as o or as e):
+// `moissanite_oe_deg` is the widest angle among the four. `diamond_closed_deg`: the
+// closed form asin(n_G sin θ) − asin(n_B sin θ).
+struct FireRow {
+    double theta_deg = 0;
+    double diamond_deg = 0, diamond_closed_deg = 0;
+    double moissanite_o_deg = 0, moissanite_oe_deg = 0;
+};
+
 struct Result {
     bool quick = false;
     Plate plate;
     std::vector<GemRow> gems;
+    std::vector<FireRow> fire;
 };
+
+// The fire rows at internal incidence angles `thetas_deg` (below both gems' critical angles).
+std::vector<FireRow> fire_spread(const std::vector<double>& thetas_deg);
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);

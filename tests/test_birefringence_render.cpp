@@ -86,7 +86,7 @@ TEST_CASE("Uniaxial scene field errors name the field", "[birefringence]") {
                       Catch::Matchers::Contains("material 'calcite'") && Catch::Matchers::Contains("fresnel-tree"));
 }
 
-TEST_CASE("Birefringence experiment (quick): plate separation, analyser, moissanite walk-off and doubling",
+TEST_CASE("Birefringence experiment (quick): plate separation, analyser, moissanite walk-off, doubling and fire",
           "[experiments][birefringence]") {
     experiments::ExperimentOptions opt;
     opt.threads = 2;
@@ -110,9 +110,17 @@ TEST_CASE("Birefringence experiment (quick): plate separation, analyser, moissan
     CHECK(normal.rho_traced_deg < 1e-9);  // along the optic axis: one ray
     CHECK(tilted.changed_fraction > normal.changed_fraction);
     CHECK(normal.changed_fraction > 0.02);  // internal reflections run off the axis and double
+    // Fire: diamond's G-B exit spread is the closed form; moissanite's is over twice it for
+    // the o ray alone and wider still with its e exits.
+    REQUIRE(r.fire.size() == 4);
+    for (const bx::FireRow& f : r.fire) {
+        CHECK(f.diamond_deg == Approx(f.diamond_closed_deg).margin(1e-9));
+        CHECK(f.moissanite_o_deg > 2 * f.diamond_deg);
+        CHECK(f.moissanite_oe_deg > f.moissanite_o_deg);
+    }
     const fs_path_helper::path dir = fs_path_helper::temp_directory_path() / ("refract-test-birefringence-" + std::to_string(::getpid()));
     bx::write(r, dir.string());
-    for (const char* f : {"plate.csv", "plate_profile.csv", "gems.csv", "plate.png", "summary.md", "plate.json"})
+    for (const char* f : {"plate.csv", "plate_profile.csv", "gems.csv", "fire.csv", "plate.png", "summary.md", "plate.json"})
         CHECK(fs_path_helper::exists(dir / f));
     fs_path_helper::remove_all(dir);
 }
