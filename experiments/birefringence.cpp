@@ -204,13 +204,12 @@ Result compute(const ExperimentOptions& opt) {
             p.image = img.image;
             p.scene = j;
         }
-        // The image's x runs from −x (left) … the camera looks down −y with +z up in the image.
+        // Abscissae: position on the image from its centre (the image's right is the scene's −x).
         auto& prof = p.profile[a];
         prof.resize(static_cast<size_t>(W));
         for (int i = 0; i < W; ++i) prof[static_cast<size_t>(i)] = img.image.at(i, H / 2).mean();
     }
-    // The o image lies over the line (x = 0), the e image walked off; the image's x axis
-    // runs along −x of the scene when looking down with +z up, so use |x|.
+    // The o image lies over the line (the image centre), the e image walked off.
     const auto pk = peaks(p.profile[0], x0, dx);
     if (pk.size() >= 2) p.separation_measured = std::abs(pk[0].x - pk[1].x);
     const auto intensity_near = [&](const std::vector<double>& prof, double x) {
@@ -304,7 +303,7 @@ void write(const Result& r, const std::string& dir) {
 
     if (gnuplot_available()) {
         std::ostringstream b;
-        b << "set datafile separator ','\nset xlabel 'x across the line (scene units)'\nset ylabel 'pixel value'\n"
+        b << "set datafile separator ','\nset xlabel 'position across the line on the image, from its centre (scene units)'\nset ylabel 'pixel value'\n"
           << "set key top left\nset title 'Calcite plate " << fmt(p.thickness) << " thick, optic axis at "
           << fmt(p.axis_deg) << "°: double image of one line'\n"
           << "plot 'plate_profile.csv' using 1:2 with lines lw 2 title 'natural light', "
