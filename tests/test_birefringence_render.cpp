@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <unistd.h>
 namespace fs_path_helper = std::filesystem;
 
@@ -195,4 +197,11 @@ TEST_CASE("Energy through a calcite slab: every branch of the tree sums to the i
     CHECK(eye + lost == Approx(1.0).margin(1e-9));
     // A linearly polarised photon: all its power still comes out.
     CHECK(leaving(e, ray, LightStokes{polar::linear(1.0, 0.7), x}, lost) + lost == Approx(1.0).margin(1e-9));
+}
+
+TEST_CASE("The example calcite plate scene is the experiment's plate", "[birefringence]") {
+    std::ifstream in(std::string(REFRACT_SOURCE_DIR) + "/scenes/examples/calcite-plate.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    CHECK(text.str() == experiments::json_text(bx::plate_scene(0.5, 45, 800, 200, -1)));
 }
