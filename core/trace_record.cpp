@@ -73,6 +73,12 @@ public:
                 s.Rs = s.Rp = 1.0;
                 s.event = "total internal reflection";
             }
+        } else if (h.material->is<material::Uniaxial>()) {
+            // The branches: reflected beam(s), and o and e rays (entering) or the transmitted beam.
+            int transmitted = 0;
+            for (int b = 0; b < in.branches; ++b) transmitted += in.transmitted[static_cast<size_t>(b)] ? 1 : 0;
+            s.event = transmitted == 0 ? "total internal reflection" : "double refraction";
+            s.R = in.reflectance;
         } else {
             s.event = "mirror";
             s.R = in.reflectance;
