@@ -31,6 +31,7 @@ struct Args {
     double timeout = 900;
     bool no_povray = false;
     int polarisation_pairs = 0;
+    int birefringence_pairs = 0;
     bool kernels = false, meshes = false, objects = false, sweep = false;
     int sweep_rays = 0;
     std::string rtiow;
@@ -39,6 +40,72 @@ struct Args {
 
 using refract::cli::bench::median;
 double cpu_seconds() { return refract::cli::bench::process_cpu_seconds(); }
+
+// Two scenes timed in pairs (a, b, a, b, ...): wall and CPU time of each render, median
+// and min, the ratio b / a per pair, and the load average before and after.
+struct PairTimes {
+    std::vector<double> wall[2], cpu[2], ratio_wall, ratio_cpu;
+    std::uint64_t segments[2] = {0, 0}, photon_segments[2] = {0, 0};
+};
+PairTimes time_pairs(const refract::Scene& a, const refract::Scene& b, const refract::RenderOptions& opt, int pairs) {
+    using namespace refract;
+    PairTimes t;
+    for (int k = 0; k < pairs; ++k)
+        for (int m = 0; m < 2; ++m) {
+            const double c0 = cpu_seconds();
+            const RenderResult r = render(m == 0 ? a : b, opt);
+            t.wall[m].push_back(r.stats.seconds);
+            t.segments[m] = r.stats.segments;
+            t.photon_segments[m] = r.stats.photon_segments;
+            t.cpu[m].push_back(cpu_seconds() - c0);
+            if (m == 1) {
+                t.ratio_wall.push_back(t.wall[1].back() / t.wall[0].back());
+                t.ratio_cpu.push_back(t.cpu[1].back() / t.cpu[0].back());
+            }
+        }
+    return t;
+}
+
+void print_row(const std::string& what, const std::vector<double>& v) {
+    std::cout << "  " << std::left << std::setw(44) << what << std::right << std::fixed << std::setprecision(3)
+              << " median " << std::setw(8) << median(v) << "  min " << std::setw(8)
+              << *std::min_element(v.begin(), v.end()) << "\n";
+}
+
+void print_load(const char* when) {
+    double load[3] = {0, 0, 0};
+    if (getloadavg(load, 3) > 0)
+        std::cout << "  load average " << when << ": " << std::setprecision(2) << load[0] << " " << load[1] << " "
+                  << load[2] << "\n";
+}
+
+// The same brilliant in diamond and in moissanite as a uniaxial crystal (optic axis along
+// the table normal of the scene's gem, tilted 25° about x), both with exact polarisation,
+// light pass and spectral eye pass: target moissanite <= 3x diamond.
+void compare_birefringence(const nlohmann::json& scene, const refract::RenderOptions& opt, int pairs) {
+    using namespace refract;
+    print_load("before");
+    nlohmann::json dj = scene;
+    dj["render"]["polarisation"] = "exact";
+    nlohmann::json mj = dj;
+    const double a = 25.0 * M_PI / 180.0;
+    mj["materials"]["diamond"] = {{"type", "uniaxial"}, {"crystal", "moissanite"},
+                                  {"optic_axis", {0.0, std::cos(a), std::sin(a)}}};
+    const Scene diamond = experiments::scene_from_json(dj, "bench diamond exact");
+    const Scene moissanite = experiments::scene_from_json(mj, "bench moissanite exact");
+    const PairTimes t = time_pairs(diamond, moissanite, opt, pairs);
+    std::cout << "  segments traced, diamond / moissanite: eye " << t.segments[0] << " / " << t.segments[1]
+              << ", light " << t.photon_segments[0] << " / " << t.photon_segments[1] << "\n";
+    print_row("diamond (exact), light + eye pass, wall (s)", t.wall[0]);
+    print_row("moissanite (uniaxial, exact), wall (s)", t.wall[1]);
+    print_row("diamond (exact), light + eye pass, CPU (s)", t.cpu[0]);
+    print_row("moissanite (uniaxial, exact), CPU (s)", t.cpu[1]);
+    print_row("moissanite / diamond per pair, wall", t.ratio_wall);
+    print_row("moissanite / diamond per pair, CPU", t.ratio_cpu);
+    std::cout << "  target: moissanite <= 3x diamond (CPU median " << std::setprecision(2) << median(t.ratio_cpu)
+              << "x: " << (median(t.ratio_cpu) <= 3.0 ? "met" : "missed") << ")\n";
+    print_load("after");
+}
 
 // Natural against exact polarisation on the same scene, in pairs (natural, exact, natural,
 // exact, ...): wall and CPU time of each render, median and min, the ratio per pair, and
@@ -206,6 +273,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--polarisation-pairs", a->polarisation_pairs,
                     "Only time natural against exact polarisation, in N pairs (natural, exact, ...)")
         ->check(CLI::Range(1, 100));
+    sub->add_option("--birefringence-pairs", a->birefringence_pairs,
+                    "Only time the brilliant in diamond against moissanite (uniaxial), exact polarisation, in N pairs")
+        ->check(CLI::Range(1, 100));
     sub->add_flag("--kernels", a->kernels,
                   "Only the round brilliant's intersection: plane-set kernel against Embree on its triangles, same rays");
     sub->add_flag("--meshes", a->meshes, "Only the mesh search, 80 to 327 680 triangles, against Embree alone");
@@ -238,7 +308,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
             throw InputError("bench: --samples must be in [2, 1000] (got " + std::to_string(a->samples) + ")");
         if (!(a->timeout >= 0.001 && a->timeout <= 86400))  // NaN too
             throw InputError("bench: --timeout must be a number of seconds in [0.001, 86400]");
-        if (!a->no_povray && a->polarisation_pairs == 0 && validation::find_povray(a->povray).empty())
+        if (!a->no_povray && a->polarisation_pairs == 0 && a->birefringence_pairs == 0 &&
+            validation::find_povray(a->povray).empty())
             throw InputError("bench: POV-Ray executable '" + a->povray +
                              "' not found (install POV-Ray 3.7, or time refract alone with --no-povray)");
         oh::SceneParams p;
@@ -251,6 +322,10 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
                   << " threads\n";
         if (a->polarisation_pairs > 0) {
             compare_polarisation(oh::scene_json(p), opt, a->polarisation_pairs);
+            return;
+        }
+        if (a->birefringence_pairs > 0) {
+            compare_birefringence(oh::scene_json(p), opt, a->birefringence_pairs);
             return;
         }
         if (a->rounds == 0) a->rounds = 3;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "core/birefringence.h"
 #include "core/material.h"
 #include "core/optics.h"
 #include "core/polarisation.h"
@@ -42,18 +43,26 @@ struct Branch {
     Ray ray;
     Vec3 factor;
     double bailout_factor;
+    // Uniaxial crystals: the wave the new ray travels as (o or e inside the crystal), and,
+    // with exact polarisation, the Stokes frames of the branch's Mueller matrix: x̂ on the
+    // parent's side and on the new ray's (zero: ŝ of the interface, as for isotropic media).
+    biref::Wave wave = biref::Wave::Isotropic;
+    Vec3 frame_parent = Vec3::Zero(), frame_child = Vec3::Zero();
 };
 
 struct Interaction {
     bool leaf = false;          // the branch ends here (diffuse, Lambertian, emissive)
-    std::array<Branch, 2> branch;
+    std::array<Branch, 3> branch;
     int branches = 0;           // branch[0]: reflection; branch[1]: refraction
+    // Which branches are transmitted (crossing the surface): a uniaxial crystal spawns up to
+    // three (one beam and two waves of the crystal).
+    std::array<bool, 3> transmitted{false, true, true};
     double reflectance = 0;     // dielectric: R used for the split (1 on TIR)
     bool split_mirror = false;  // POV-Ray dispersion split: branch[1] is a band's TIR mirror ray
     // Exact polarisation (InteractionContext::exact): each branch's Mueller matrix in the
     // interface's s/p frames (core/polarisation.h); `factor` then holds only the colour
     // (filter, mirror tint), the Fresnel part being in the matrix.
-    std::array<polar::Mueller, 2> mueller;
+    std::array<polar::Mueller, 3> mueller;
 };
 
 // What a dielectric interaction depends on besides the hit.
@@ -63,6 +72,12 @@ struct InteractionContext {
     double band_ior = 0;  // > 0: the index at one wavelength instead of `ior`
     bool split = false;   // POV-Ray: the band's share of an RGB ray splitting here
     bool exact = false;   // exact polarisation: Mueller matrices on the branches
+    // Uniaxial crystals: the wave the incoming ray travels as, its wavelength (nm; 0: an RGB
+    // ray, taken at the D line), and whether light runs against the rays (an eye pass, whose
+    // Mueller matrices map light from the child's ray into the parent's).
+    biref::Wave wave = biref::Wave::Isotropic;
+    double wavelength_nm = 0;
+    bool adjoint = false;
 };
 
 // Reflectance of a dielectric for its model at cos θi and relative index eta (Constant,
@@ -153,6 +168,12 @@ Interaction interact(const material::Mirror& m, const SurfaceHit& h, const Ray& 
 Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 Interaction interact(const material::Emissive& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
+// A uniaxial crystal: biref::split_at_interface's beams (core/birefringence.h). Natural
+// light: each branch's factor is its power for unpolarised incidence (a crystal wave: the
+// power of that wave) times the filter on transmission; exact polarisation: its Mueller
+// matrix, for an eye pass (c.adjoint) the one of the reversed path, light arriving along
+// the child's ray and leaving along the parent's (biref::reversed, reciprocity).
+Interaction interact(const material::Uniaxial& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
 
 // One sampled continuation of a path (stochastic integrator): the new direction and the

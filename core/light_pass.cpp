@@ -79,8 +79,10 @@ struct PhotonEnds {
         if (e.band >= 0 || !ctx.dispersive[mi]) return false;
         // First transparent hit: one ray per band, each with the band's weight.
         for (const int k : ctx.split_bands[mi]) {
-            const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[static_cast<size_t>(k)][mi]);
-            for (int b = 0; b < in.branches; ++b) w.push(e, h, in, b, b == 1, list, ctx.weights[static_cast<size_t>(k)], k);
+            const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[static_cast<size_t>(k)][mi], false,
+                                                       e.wave, ctx.all_wavelengths[static_cast<size_t>(k)]);
+            for (int b = 0; b < in.branches; ++b)
+                w.push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list, ctx.weights[static_cast<size_t>(k)], k);
         }
         return true;
     }

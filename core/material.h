@@ -76,11 +76,24 @@ struct Dielectric {
     std::optional<spectrum::Absorption> absorption;
 };
 
+// A uniaxial crystal (core/birefringence.h, docs/birefringence.md) in the air: every ray
+// splits into an ordinary and an extraordinary one. The indices of the two rays as
+// functions of wavelength; the optic axis (unit, in the scene's frame).
+struct Uniaxial {
+    spectrum::Dispersion ordinary, extraordinary;
+    Vec3 optic_axis{0, 0, 1};
+    Vec3 filter{1, 1, 1};  // transmitted colour per crossing
+    std::string crystal;   // the catalogue crystal, or empty
+    // The medium at wavelength λ (nm); at the sodium D line when λ <= 0 (an RGB ray).
+    double n_o(double lambda_nm) const { return ordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
+    double n_e(double lambda_nm) const { return extraordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
+};
+
 }  // namespace material
 
 struct Material {
     using Kind = std::variant<material::Diffuse, material::Lambertian, material::Mirror, material::Metal,
-                              material::Emissive, material::Dielectric>;
+                              material::Emissive, material::Dielectric, material::Uniaxial>;
     std::string name;
     Kind kind;
 
@@ -93,6 +106,12 @@ struct Material {
     // Surfaces that end a ray-tree branch and are shaded there (diffuse, Lambertian).
     bool diffuse_surface() const { return is<material::Diffuse>() || is<material::Lambertian>(); }
     const material::Dielectric* dielectric() const { return as<material::Dielectric>(); }
+    // Transparent kinds (dielectric, uniaxial): the colour a crossing transmits; else null.
+    const Vec3* transparent_filter() const {
+        if (const auto* d = dielectric()) return &d->filter;
+        if (const auto* u = as<material::Uniaxial>()) return &u->filter;
+        return nullptr;
+    }
 };
 
 }  // namespace refract

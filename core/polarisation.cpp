@@ -38,6 +38,30 @@ Mueller jones_diagonal_to_mueller(std::complex<double> a, std::complex<double> b
     return M;
 }
 
+Mueller jones_to_mueller(const Eigen::Matrix2cd& J) {
+    // Φ' = J Φ J† for Φ = ½ Σ_j S_j σ_j (σ0 = I, σ1 = diag(1, −1), σ2 = [[0, 1], [1, 0]],
+    // σ3 = [[0, −i], [i, 0]]): column j is read off K_j = J σ_j J† as
+    // (½(K00 + K11), ½(K00 − K11), Re K10, Im K10), K Hermitian. Written out per σ_j.
+    using c = std::complex<double>;
+    const c a = J(0, 0), b = J(0, 1), cc = J(1, 0), d = J(1, 1);
+    // |z|² as re² + im² (libstdc++'s std::norm goes through hypot).
+    const auto abs2 = [](c z) { return z.real() * z.real() + z.imag() * z.imag(); };
+    const double A = abs2(a), B = abs2(b), C = abs2(cc), D = abs2(d);
+    const c ab = a * std::conj(b), cd = cc * std::conj(d);
+    Mueller M;
+    const auto column = [&M](int j, double k00, double k11, c k10) {
+        M(0, j) = 0.5 * (k00 + k11);
+        M(1, j) = 0.5 * (k00 - k11);
+        M(2, j) = k10.real();
+        M(3, j) = k10.imag();
+    };
+    column(0, A + B, C + D, cc * std::conj(a) + d * std::conj(b));
+    column(1, A - B, C - D, cc * std::conj(a) - d * std::conj(b));
+    column(2, 2.0 * ab.real(), 2.0 * cd.real(), cc * std::conj(b) + d * std::conj(a));
+    column(3, 2.0 * ab.imag(), 2.0 * cd.imag(), c(0, 1) * (d * std::conj(a) - cc * std::conj(b)));
+    return M;
+}
+
 Mueller mueller_reflection(double cos_i, double eta) {
     const auto f = fresnel_amplitudes(cos_i, eta);
     return jones_diagonal_to_mueller(f.rs, f.rp);

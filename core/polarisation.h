@@ -64,6 +64,12 @@ FresnelAmplitudes fresnel_amplitudes(double cos_i, double eta);
 //     [ 0              0              Im z  Re z  ]
 Mueller jones_diagonal_to_mueller(std::complex<double> a, std::complex<double> b);
 
+// Mueller matrix of a general 2×2 Jones matrix J (E_out = J E_in, both in their own
+// frames): from the coherency matrix Φ = E E† of the Stokes definition above,
+// Φ = ½[[S0 + S1, S2 − iS3], [S2 + iS3, S0 − S1]], Φ' = J Φ J† (Azzam & Bashara ch. 2);
+// jones_diagonal_to_mueller is its diagonal case.
+Mueller jones_to_mueller(const Eigen::Matrix2cd& J);
+
 // Reflection at a smooth dielectric interface: jones_diagonal_to_mueller(rs, rp).
 // M00 = optics::fresnel R() for natural light; on TIR M00 = 1 and the lower block is
 // the rotation by the phase difference δ = arg rs − arg rp (M23 = sin δ, M22 = cos δ).

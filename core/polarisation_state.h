@@ -16,7 +16,10 @@ struct Scene;
 
 // Natural light (Yasuda eq. 7 at every node): nothing to carry.
 struct NaturalLight {};
-inline NaturalLight descend(const NaturalLight&, const Vec3&, const Vec3&, const polar::Mueller&) { return {}; }
+inline NaturalLight descend(const NaturalLight&, const Vec3&, const Vec3&, const polar::Mueller&, const Vec3& = Vec3::Zero(),
+                            const Vec3& = Vec3::Zero()) {
+    return {};
+}
 inline double throughput(const NaturalLight&) { return 1.0; }
 
 // Eye pass: `C` maps the Stokes vector of light arriving at this ray's origin from its
@@ -31,15 +34,18 @@ struct EyeStokes {
 // from the child's ray into the parent's (reflection and transmission are reciprocal).
 // The rotation R(a) = polar::rotator(polar::frame_angle(s, x, k)) is applied to C's
 // columns 1 and 2 directly, with cos 2a and sin 2a from cos a = s·x, sin a = k·(s × x).
-inline EyeStokes descend(const EyeStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M) {
+// A uniaxial crystal's branch gives its frames: x̂ on the parent's side (`xp`, ⟂ dir) and on
+// the child's (`xc`); zero: ŝ on both.
+inline EyeStokes descend(const EyeStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M,
+                         const Vec3& xp = Vec3::Zero(), const Vec3& xc = Vec3::Zero()) {
     const Vec3 k = -dir;  // the light's direction on the parent's segment
-    const Vec3 s = polar::s_axis(n, k, p.x);
+    const Vec3 s = xp.isZero() ? polar::s_axis(n, k, p.x) : xp;
     const double ca = s.dot(p.x), sa = k.dot(s.cross(p.x));
     const double c2 = ca * ca - sa * sa, s2 = 2.0 * ca * sa;
     polar::Mueller CR = p.C;
     CR.col(1) = c2 * p.C.col(1) - s2 * p.C.col(2);
     CR.col(2) = s2 * p.C.col(1) + c2 * p.C.col(2);
-    return {CR * M, s};
+    return {CR * M, xc.isZero() ? s : xc};
 }
 
 // The share of unpolarised light arriving along the branch that reaches the camera.
@@ -52,12 +58,13 @@ struct LightStokes {
     Vec3 x{1, 0, 0};
 };
 // R(a) = polar::rotator(polar::frame_angle(x, s, dir)) applied to (S1, S2) directly.
-inline LightStokes descend(const LightStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M) {
-    const Vec3 s = polar::s_axis(n, dir, p.x);
+inline LightStokes descend(const LightStokes& p, const Vec3& n, const Vec3& dir, const polar::Mueller& M,
+                           const Vec3& xp = Vec3::Zero(), const Vec3& xc = Vec3::Zero()) {
+    const Vec3 s = xp.isZero() ? polar::s_axis(n, dir, p.x) : xp;
     const double ca = p.x.dot(s), sa = dir.dot(p.x.cross(s));
     const double c2 = ca * ca - sa * sa, s2 = 2.0 * ca * sa;
     const polar::Stokes R(p.S[0], c2 * p.S[1] + s2 * p.S[2], -s2 * p.S[1] + c2 * p.S[2], p.S[3]);
-    return {M * R, s};
+    return {M * R, xc.isZero() ? s : xc};
 }
 
 inline double throughput(const LightStokes& p) { return p.S[0]; }

@@ -20,6 +20,7 @@
 // vector for a light pass; the walker updates it with each branch's Mueller matrix.
 #include <cstdint>
 #include <initializer_list>
+#include <type_traits>
 #include <vector>
 
 #include "core/polarisation_state.h"
@@ -33,10 +34,11 @@ struct TreeEntryT {
     Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
     double bailout = 1.0;  // the scalar the threshold is compared with
     // Counters in 16 bits (max_depth <= 10000, bands <= 1003): a list entry of the
-    // natural-light walk is 104 bytes.
+    // natural-light walk is 112 bytes (104 before the uniaxial crystals' `wave`).
     std::int16_t depth = 0;  // surface interactions before this ray
     std::int16_t reflections = 0, transmissions = 0;
     std::int16_t band = -1;  // spectral band of the ray; −1: an RGB ray
+    biref::Wave wave = biref::Wave::Isotropic;  // inside a uniaxial crystal: o or e
     double travelled = 0;    // path length from the tree's root to this ray's origin
     [[no_unique_address]] P pol{};  // polarisation payload (none for natural light)
     RayOrigin from{};        // the hit this ray leaves (none for a root)
@@ -146,12 +148,13 @@ public:
     // ②③④ the interaction at hit h: a leaf goes to the callback, branches to the list.
     template <class Ends>
     void expand(const Entry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
-        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior);
+        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior, false, e.wave, ends.wavelength(e),
+                                                std::is_same_v<P, EyeStokes>);
         if (in.leaf) {
             ends.leaf(e, h);
             return;
         }
-        for (int b = 0; b < in.branches; ++b) push(e, h, in, b, b == 1, list);
+        for (int b = 0; b < in.branches; ++b) push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list);
     }
 
     // ⑥ a child along branch b of `in` with the parent's attenuation times the branch's
@@ -168,31 +171,32 @@ public:
         const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
         if (a.bailout <= 0 || a.bailout < limits_.threshold) {
             ++stats_.pruned;
-            stats_.lost_threshold += dropped(e, h, a.weight.cwiseProduct(tint), M, band);
+            stats_.lost_threshold += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
             return false;
         }
         const int refl = e.reflections + (transmitted ? 0 : 1), trans = e.transmissions + (transmitted ? 1 : 0);
         if (e.depth + 1 > limits_.max_depth) {
             ++stats_.depth_limited;
-            stats_.lost_depth += dropped(e, h, a.weight.cwiseProduct(tint), M, band);
+            stats_.lost_depth += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
             return false;
         }
         if (refl > limits_.max_reflections || trans > limits_.max_transmissions) {
             ++stats_.depth_limited;
-            stats_.lost_limits += dropped(e, h, a.weight.cwiseProduct(tint), M, band);
+            stats_.lost_limits += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
             return false;
         }
         list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
                         static_cast<std::int16_t>(refl), static_cast<std::int16_t>(trans),
-                        static_cast<std::int16_t>(band == -2 ? e.band : band), e.travelled + h.hit.t,
-                        descend(e.pol, h.normal, e.ray.dir, M), tracer_.origin_of(h)});
+                        static_cast<std::int16_t>(band == -2 ? e.band : band), br.wave, e.travelled + h.hit.t,
+                        descend(e.pol, h.normal, e.ray.dir, M, br.frame_parent, br.frame_child), tracer_.origin_of(h)});
         return true;
     }
 
 private:
     // The light a dropped child would have carried for unpolarised light: its colour
     // weight's mean, times the Fresnel part its polarisation payload holds.
-    double dropped(const Entry& e, const SurfaceHit& h, const Vec3& weight, const polar::Mueller& M, int band) const {
+    double dropped(const Entry& e, const SurfaceHit& h, const Branch& br, const Vec3& weight, const polar::Mueller& M,
+                   int band) const {
         const int k = band == -2 ? e.band : band;
         Vec3 w = weight;
         if (k >= 0 && limits_.band_weights) {
@@ -200,7 +204,7 @@ private:
             if (static_cast<size_t>(k) >= bw.size()) return 0.0;
             w = w.cwiseProduct(bw[static_cast<size_t>(k)]);
         }
-        return w.mean() * throughput(descend(e.pol, h.normal, e.ray.dir, M));
+        return w.mean() * throughput(descend(e.pol, h.normal, e.ray.dir, M, br.frame_parent, br.frame_child));
     }
 
     const SceneTracer& tracer_;

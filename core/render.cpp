@@ -121,6 +121,11 @@ void validate(const Scene& scene) {
                                  "': \"exact\" polarisation needs \"reflectance\": \"fresnel\" (the amplitudes)");
     }
     for (const Material& m : scene.materials)
+        if (m.is<material::Uniaxial>() && (s.compat == Compat::PovRay || s.integrator != IntegratorKind::FresnelTree))
+            throw InputError(f + ": material '" + m.name +
+                             "': a uniaxial crystal needs the physical mode and the fresnel-tree integrator (or the "
+                             "spectral eye pass): its rays carry their o/e wave along the ray tree");
+    for (const Material& m : scene.materials)
         if (m.dielectric() && !(m.dielectric()->ior > 0 && std::isfinite(m.dielectric()->ior)))
             throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
 }

@@ -165,6 +165,38 @@ material::Dielectric parse_dielectric(const JsonReader& r, const std::string& fi
     return m;
 }
 
+// {"type": "uniaxial", "crystal": "calcite" | "ordinary": <dispersion>, "extraordinary":
+//  <dispersion>, "optic_axis": [x, y, z], "filter": [r, g, b]} (docs/birefringence.md).
+material::Uniaxial parse_uniaxial(const JsonReader& r, const std::string& file) {
+    r.only({"type", "crystal", "ordinary", "extraordinary", "optic_axis", "filter"});
+    material::Uniaxial m{spectrum::Dispersion{}, spectrum::Dispersion{}, Vec3(0, 0, 1), Vec3(1, 1, 1), ""};
+    if (r.has("crystal")) {
+        if (r.has("ordinary") || r.has("extraordinary"))
+            r.fail_at("crystal", "give either a catalogue \"crystal\" or \"ordinary\" and \"extraordinary\"");
+        m.crystal = r.string("crystal");
+        const auto c = spectrum::uniaxial_crystal(m.crystal);
+        if (!c) {
+            std::string known;
+            for (const auto& n : spectrum::uniaxial_crystal_names()) known += (known.empty() ? "" : ", ") + n;
+            r.fail_at("crystal", "unknown crystal '" + m.crystal + "' (" + known + ")");
+        }
+        m.ordinary = c->ordinary;
+        m.extraordinary = c->extraordinary;
+    } else {
+        if (!r.has("ordinary") || !r.has("extraordinary"))
+            r.fail_at("type", "a uniaxial material needs \"crystal\", or both \"ordinary\" and \"extraordinary\"");
+        m.ordinary = spectrum::parse_dispersion(r.raw("ordinary"), file + ": " + r.path_of("ordinary"));
+        m.extraordinary = spectrum::parse_dispersion(r.raw("extraordinary"), file + ": " + r.path_of("extraordinary"));
+        if (m.ordinary.is_povray() || m.extraordinary.is_povray())
+            r.fail_at("ordinary", "POV-Ray's dispersion law is not supported for a uniaxial crystal");
+    }
+    const Vec3 axis = r.vec3("optic_axis", m.optic_axis);
+    if (!(axis.norm() > 0) || !axis.allFinite()) r.fail_at("optic_axis", "must be a non-zero vector");
+    m.optic_axis = axis.normalized();
+    m.filter = r.vec3("filter", m.filter);
+    return m;
+}
+
 Material parse_material(const JsonReader& r, const std::string& name, const std::string& file) {
     Material m;
     m.name = name;
@@ -188,9 +220,11 @@ Material parse_material(const JsonReader& r, const std::string& name, const std:
         m.kind = material::Emissive{parse_pigment(r).color};
     } else if (type == "dielectric") {
         m.kind = parse_dielectric(r, file);
+    } else if (type == "uniaxial") {
+        m.kind = parse_uniaxial(r, file);
     } else {
         r.fail_at("type", "unknown material type '" + type +
-                              "' (diffuse, lambertian, mirror, metal, emissive, dielectric)");
+                              "' (diffuse, lambertian, mirror, metal, emissive, dielectric, uniaxial)");
     }
     return m;
 }
@@ -444,7 +478,10 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
     if (compat == "physical") s.compat = Compat::Physical;
     else if (compat == "povray") s.compat = Compat::PovRay;
     else r.fail_at("compat", "unknown mode '" + compat + "' (physical, povray)");
-    if (r.has("spectral")) s.spectral = parse_spectral(r.child("spectral"), file);
+    // `"spectral": false`: RGB rays only, even with dispersive or uniaxial materials (their
+    // index at the sodium D line).
+    if (r.has("spectral") && !(r.raw("spectral").is_boolean() && !r.raw("spectral").get<bool>()))
+        s.spectral = parse_spectral(r.child("spectral"), file);
     if (r.has("light_pass")) s.light_pass = parse_light_pass(r.child("light_pass"));
     if (r.has("polarisation")) parse_polarisation(r, s);
     return s;
@@ -553,8 +590,12 @@ Scene parse_scene(const json& j, const std::string& file) {
     }
     if (root.has("render")) s.settings = parse_settings(root.child("render"), file);
     apply_light_spectra(s, root);
+    const bool rgb_only = root.has("render") && root.child("render").has("spectral") &&
+                          root.child("render").raw("spectral").is_boolean() &&
+                          !root.child("render").raw("spectral").get<bool>();
     for (const Material& m : s.materials)
-        if (m.dielectric() && m.dielectric()->dispersion) s.settings.spectral.enabled = true;
+        if (!rgb_only && ((m.dielectric() && m.dielectric()->dispersion) || m.is<material::Uniaxial>()))
+            s.settings.spectral.enabled = true;
     if (s.settings.light_pass.enabled) s.settings.spectral.enabled = true;  // the maps are read by the spectral pass
     return s;
 }

@@ -56,7 +56,8 @@ public:
                 s.facet_label = c->labels[static_cast<size_t>(h.hit.facet)];
         s.entering = h.entering;
         hits_[key(h.hit.point)] = s.id;
-        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h));
+        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h), false, e.wave, wavelength(e),
+                                                std::is_same_v<P, EyeStokes>);
         if (in.leaf) return false;  // leaf() names the event
         if (const auto* d = h.material->dielectric()) {
             const double ior = band_ior(e, h) > 0 ? band_ior(e, h) : d->ior;
@@ -72,6 +73,12 @@ public:
                 s.Rs = s.Rp = 1.0;
                 s.event = "total internal reflection";
             }
+        } else if (h.material->is<material::Uniaxial>()) {
+            // The branches: reflected beam(s), and o and e rays (entering) or the transmitted beam.
+            int transmitted = 0;
+            for (int b = 0; b < in.branches; ++b) transmitted += in.transmitted[static_cast<size_t>(b)] ? 1 : 0;
+            s.event = transmitted == 0 ? "total internal reflection" : "double refraction";
+            s.R = in.reflectance;
         } else {
             s.event = "mirror";
             s.R = in.reflectance;

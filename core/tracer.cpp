@@ -254,11 +254,13 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to, Rend
         if (!n || n->hit.t >= remaining - kPovShadowTolerance) return t;
         const Hit* best = &n->hit;
         const Material* best_m = &scene_.materials[order_[n->k]->material];
-        const auto* glass = best_m->dielectric();
-        if (!glass) return Vec3(0, 0, 0);
-        t = t.cwiseProduct(glass->filter);
+        const Vec3* filter = best_m->transparent_filter();
+        if (!filter) return Vec3(0, 0, 0);
+        t = t.cwiseProduct(*filter);
         // Leaving a fading interior: its fade over the chord (ComputeShadowTexture).
-        if (glass->absorption && best->normal.dot(dir) > 0) t = t.cwiseProduct(pov_fade(glass->absorption->rgb, best->t));
+        const auto* glass = best_m->dielectric();
+        if (glass && glass->absorption && best->normal.dot(dir) > 0)
+            t = t.cwiseProduct(pov_fade(glass->absorption->rgb, best->t));
         origin = best->point;
         remaining -= best->t;
         from_k = n->k;
@@ -300,10 +302,16 @@ Vec3 SceneTracer::local_light(const SurfaceHit& h, RenderStats& stats) const {
 }
 
 Interaction SceneTracer::interact(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior,
-                                  bool split) const {
-    if (h.material->is<material::Dielectric>()) ++stats.tree_nodes;
-    const InteractionContext c{scene_.settings.compat == Compat::PovRay, scene_.settings.pruning_threshold(), band_ior,
-                               split, scene_.settings.polarisation == PolarisationModel::Exact};
+                                  bool split, biref::Wave wave, double wavelength_nm, bool adjoint) const {
+    if (h.material->transparent_filter()) ++stats.tree_nodes;
+    const InteractionContext c{scene_.settings.compat == Compat::PovRay,
+                               scene_.settings.pruning_threshold(),
+                               band_ior,
+                               split,
+                               scene_.settings.polarisation == PolarisationModel::Exact,
+                               wave,
+                               wavelength_nm,
+                               adjoint};
     return refract::interact(*h.material, h, ray, c);
 }
 

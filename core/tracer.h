@@ -56,8 +56,11 @@ public:
     // Snell, the POV-Ray mode for the refraction direction and the TIR test only (Fresnel
     // keeps the nominal `ior`). `split`: POV-Ray mode, the band's share of an RGB ray
     // splitting at its first refraction.
+    // `wave`, `wavelength_nm`, `adjoint`: what a uniaxial crystal's interaction needs
+    // (InteractionContext).
     Interaction interact(const SurfaceHit& h, const Ray& ray, RenderStats& stats, double band_ior = 0,
-                         bool split = false) const;
+                         bool split = false, biref::Wave wave = biref::Wave::Isotropic, double wavelength_nm = 0,
+                         bool adjoint = false) const;
 
     // Beer–Lambert over the segment that ended at h from inside an absorbing dielectric
     // (physical mode): exp(−α t) per channel, at `wavelength_nm` (all channels alike) or,

@@ -1,5 +1,6 @@
 #pragma once
 // One driver per paper and study; each is registered in experiments/experiment.cpp.
+#include "experiments/birefringence.h"
 #include "experiments/experiment.h"
 #include "experiments/gem_cuts.h"
 #include "experiments/gem_geometry.h"

@@ -35,6 +35,10 @@ const std::vector<Experiment>& all() {
          "Round brilliant proportion sweep: light return, fire, leakage and scintillation over crown x pavilion "
          "angle, Tolkowsky 1919 against the optimum, the star and lower-half lengths",
          gem_cuts::run},
+        {"birefringence",
+         "Double refraction in uniaxial crystals: a calcite plate's double image against walk-off x thickness and through "
+         "an analyser; diamond, cubic zirconia and moissanite brilliants through the table (facet doubling, walk-off)",
+         birefringence::run},
     };
     return list;
 }

@@ -94,6 +94,9 @@ void check(const material::Lambertian&, const Material& m, const Refuser& refuse
 void check(const material::Metal& k, const Material& m, const Refuser& refuse) {
     if (k.fuzz != 0) refuse(material_where(m), "metal with fuzz " + pov_number(k.fuzz) + " scatters randomly (path tracing)");
 }
+void check(const material::Uniaxial&, const Material& m, const Refuser& refuse) {
+    refuse(material_where(m), "a uniaxial crystal (POV-Ray has no double refraction)");
+}
 void check(const material::Dielectric& k, const Material& m, const Refuser& refuse) {
     if (k.dispersion && k.dispersion->dispersive() && !k.dispersion->is_povray())
         refuse(material_where(m), "dispersion '" + comment_text(k.dispersion->label) +
@@ -304,6 +307,7 @@ std::string texture_of(const material::Metal& m) { return mirror_texture(m.color
 std::string texture_of(const material::Emissive& m) {
     return "pigment { rgb " + vec(m.color) + " } finish { ambient 0 emission 1 diffuse 0 }";
 }
+std::string texture_of(const material::Uniaxial&) { return ""; }  // refused by check()
 std::string texture_of(const material::Dielectric& m) {
     // rgbf <filter, 1>: transmitted light × filter, no surface colour of its own.
     // conserve_energy: the transmitted part is also × (1 − reflectivity).

@@ -68,7 +68,8 @@ SpectralContext SpectralContext::build(const Scene& scene) {
         c.split_bands.assign(materials, all_bands);
         for (size_t mi = 0; mi < materials; ++mi) {
             const Material& m = scene.materials[mi];
-            c.dispersive[mi] = m.dielectric() && m.dielectric()->dispersion.has_value();
+            // A uniaxial crystal's two indices depend on the wavelength: it always splits.
+            c.dispersive[mi] = (m.dielectric() && m.dielectric()->dispersion.has_value()) || m.is<material::Uniaxial>();
         }
     }
     std::vector<double> all = c.wavelengths;
@@ -77,6 +78,10 @@ SpectralContext SpectralContext::build(const Scene& scene) {
     c.index.assign(all.size(), std::vector<double>(materials, 0.0));
     for (size_t mi = 0; mi < materials; ++mi) {
         if (!c.dispersive[mi]) continue;
+        if (const auto* u = scene.materials[mi].as<material::Uniaxial>()) {  // its interaction takes λ
+            for (size_t b = 0; b < all.size(); ++b) c.index[b][mi] = u->n_o(all[b]);
+            continue;
+        }
         const material::Dielectric& m = *scene.materials[mi].dielectric();
         for (size_t b = 0; b < all.size(); ++b) {
             double n = m.dispersion->n(all[b]);

@@ -233,6 +233,32 @@ const std::map<std::string, Dispersion>& table() {
         // n² = 6.57232 + 0.1401/(λ² − 0.03178) − 0.02153λ².
         m.emplace("moissanite", Dispersion{MoissaniteFormModel{6.57232, 0.1401, 0.03178, 0.02153},
                                            "moissanite 6H-SiC, ordinary ray (Wang 2013)"});
+        // The other rays of the uniaxial crystals (uniaxial_crystal): "<crystal>-o"/"-e".
+        // S. Wang et al., Laser Photonics Rev. 7, 831 (2013), 6H-SiC extraordinary ray:
+        // n² = 6.7452 + 0.15352/(λ² − 0.03597) − 0.02249λ².
+        m.emplace("moissanite-e", Dispersion{MoissaniteFormModel{6.7452, 0.15352, 0.03597, 0.02249},
+                                             "moissanite 6H-SiC, extraordinary ray (Wang 2013)"});
+        // G. Ghosh, Opt. Commun. 163, 95 (1999): n² = A + Bλ²/(λ² − C) + Dλ²/(λ² − E), written as
+        // a Sellmeier sum with the constant A − 1 as a term of pole 0.
+        const auto ghosh = [](double A, double B, double C, double D, double E, std::string label) {
+            return sellmeier({A - 1.0, B, D}, {0.0, C, E}, std::move(label));
+        };
+        m.emplace("calcite-o", ghosh(1.73358749, 0.96464345, 1.94325203e-2, 1.82831454, 120,
+                                     "calcite, ordinary ray (Ghosh 1999)"));
+        m.emplace("calcite-e", ghosh(1.35859695, 0.82427830, 1.06689543e-2, 0.14429128, 120,
+                                     "calcite, extraordinary ray (Ghosh 1999)"));
+        m.emplace("quartz-o", ghosh(1.28604141, 1.07044083, 1.00585997e-2, 1.10202242, 100,
+                                    "crystalline quartz, ordinary ray (Ghosh 1999)"));
+        m.emplace("quartz-e", ghosh(1.28851804, 1.09509924, 1.02101864e-2, 1.15662475, 100,
+                                    "crystalline quartz, extraordinary ray (Ghosh 1999)"));
+        // I. H. Malitson & M. J. Dodge, JOSA 62, 1405 (1972), as given by M. J. Dodge, Handbook
+        // of Laser Science and Technology IV (1986): C_i = (pole in µm)².
+        m.emplace("sapphire-o", sellmeier({1.4313493, 0.65054713, 5.3414021},
+                                          {0.0726631 * 0.0726631, 0.1193242 * 0.1193242, 18.028251 * 18.028251},
+                                          "sapphire, ordinary ray (Malitson & Dodge 1972)"));
+        m.emplace("sapphire-e", sellmeier({1.5039759, 0.55069141, 6.5927379},
+                                          {0.0740288 * 0.0740288, 0.1216529 * 0.1216529, 20.072248 * 20.072248},
+                                          "sapphire, extraordinary ray (Malitson & Dodge 1972)"));
         return m;
     }();
     return t;
@@ -256,6 +282,18 @@ std::string known_names() {
 }
 
 }  // namespace
+
+std::vector<std::string> uniaxial_crystal_names() { return {"calcite", "quartz", "sapphire", "moissanite"}; }
+
+std::optional<UniaxialCrystal> uniaxial_crystal(const std::string& name) {
+    const std::string n = normalise_name(name);
+    for (const auto& c : uniaxial_crystal_names())
+        if (n == c) {
+            const auto& t = table();
+            return UniaxialCrystal{c == "moissanite" ? t.at("moissanite") : t.at(c + "-o"), t.at(c + "-e")};
+        }
+    return std::nullopt;
+}
 
 std::vector<std::string> catalogue_names() {
     return {"diamond", "n-bk7", "fused-silica", "water", "cubic-zirconia", "moissanite"};

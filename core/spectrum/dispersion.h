@@ -5,6 +5,7 @@
 // The laws take λ in micrometres (the unit of the published coefficients) except
 // povray_index and Dispersion::n, which take nanometres.
 #include <array>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -92,6 +93,18 @@ struct Dispersion {
 // Throws InputError listing the known names.
 const Dispersion& catalogue(const std::string& name);
 std::vector<std::string> catalogue_names();
+
+// The uniaxial crystals (core/birefringence.h): the index of the ordinary and of the
+// extraordinary ray. calcite and quartz: Ghosh, Opt. Commun. 163, 95 (1999); sapphire:
+// Malitson & Dodge, JOSA 62, 1405 (1972); moissanite (6H-SiC): Wang et al., Laser
+// Photonics Rev. 7, 831 (2013), whose ordinary ray is the catalogue's "moissanite". The
+// single rays are also catalogue entries "calcite-o", "calcite-e", …, "moissanite-e".
+// Empty when `name` is not one of uniaxial_crystal_names().
+struct UniaxialCrystal {
+    Dispersion ordinary, extraordinary;
+};
+std::optional<UniaxialCrystal> uniaxial_crystal(const std::string& name);
+std::vector<std::string> uniaxial_crystal_names();
 
 // From a scene-file value; errors name `path` and the JSON-pointer path below it, as the
 // scene reader does (path "scene.json: /materials/gem/dispersion" → ".../dispersion/B: ..."):
