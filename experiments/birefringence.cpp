@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/birefringence.h"
+#include "core/optics.h"
 #include "core/render.h"
 #include "core/spectrum/dispersion.h"
 #include "core/tracer.h"
@@ -164,7 +165,12 @@ std::vector<FireRow> fire_spread(const std::vector<double>& thetas_deg) {
         const Vec3 d(std::sin(t * kDeg), 0, std::cos(t * kDeg));
         const biref::Medium dG{diamond.n(G), diamond.n(G), Vec3::Zero()}, dB{diamond.n(B), diamond.n(B), Vec3::Zero()};
         r.diamond_deg = angle(exit_dir(dG, biref::Wave::Isotropic, d), exit_dir(dB, biref::Wave::Isotropic, d));
-        r.diamond_closed_deg = (std::asin(diamond.n(G) * std::sin(t * kDeg)) - std::asin(diamond.n(B) * std::sin(t * kDeg))) / kDeg;
+        // Closed form: each line's exit angle from Snell's law (core/optics.h), η = 1/n.
+        const auto exit_deg = [&](double n) {
+            const auto c = optics::cos_transmitted(std::cos(t * kDeg), 1.0 / n);
+            return c ? std::acos(*c) / kDeg : 90.0;
+        };
+        r.diamond_closed_deg = exit_deg(diamond.n(G)) - exit_deg(diamond.n(B));
         const biref::Medium mG{moissanite.ordinary.n(G), moissanite.extraordinary.n(G), axis};
         const biref::Medium mB{moissanite.ordinary.n(B), moissanite.extraordinary.n(B), axis};
         const std::array<Vec3, 4> e{exit_dir(mG, biref::Wave::Ordinary, d), exit_dir(mB, biref::Wave::Ordinary, d),
