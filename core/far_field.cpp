@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
 
 #include <tbb/blocked_range.h>
@@ -29,11 +30,26 @@ struct Geometry {
     Vec3 w, u, v;  // axis; φ = 0 and φ = 90° across it
     int nphi, ncos, nangle;
     std::vector<double> cos_edges;  // axis binning: −cos of the bins' edges, increasing
+    // Axis binning: for each of `ncells` equal cells of x = −cos θ over [−1, 1], the number
+    // of edges below the cell's lower end, so that a bin is found from its cell by a step
+    // or two (the cells are fine enough that few edges fall in one, even at the poles).
+    std::vector<std::int32_t> cell_first;
+    double cell_scale = 0;
 
     explicit Geometry(const FarFieldSettings& s)
         : binning(s.binning), w(s.axis.normalized()), nphi(s.azimuth_bins), ncos(s.polar_bins), nangle(s.angle_bins) {
-        if (binning == FarFieldSettings::Binning::Axis)
+        if (binning == FarFieldSettings::Binning::Axis) {
             for (int k = 1; k < nangle; ++k) cos_edges.push_back(-std::cos(M_PI * k / nangle));
+            const int ncells = std::clamp(16 * nangle, 64, 1 << 16);
+            cell_scale = 0.5 * ncells;
+            cell_first.resize(static_cast<size_t>(ncells) + 1);
+            size_t k = 0;
+            for (int i = 0; i <= ncells; ++i) {
+                const double lower = -1.0 + static_cast<double>(i) / cell_scale;
+                while (k < cos_edges.size() && cos_edges[k] < lower) ++k;
+                cell_first[static_cast<size_t>(i)] = static_cast<std::int32_t>(k);
+            }
+        }
         Vec3 r = s.reference - s.reference.dot(w) * w;
         if (r.norm() < 1e-9) r = (std::abs(w.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)) - w * (std::abs(w.x()) < 0.9 ? w.x() : w.y());
         u = r.normalized();
@@ -43,17 +59,14 @@ struct Geometry {
     int bin_of(const Vec3& d) const {
         const double c = std::clamp(d.dot(w), -1.0, 1.0);
         if (binning == FarFieldSettings::Binning::Axis) {  // θ = acos c, by its bins' cosines
-            // The number of edges <= −c (std::upper_bound), by a search without branches.
+            // The number of edges <= −c (std::upper_bound's answer): every edge below x's
+            // cell is below x, so count on from the cell's first.
             const double x = -c;
-            const double* base = cos_edges.data();
-            size_t n = cos_edges.size();
-            if (n == 0) return 0;
-            while (n > 1) {
-                const size_t half = n / 2;
-                base = base[half] <= x ? base + half : base;
-                n -= half;
-            }
-            return static_cast<int>(base - cos_edges.data()) + (*base <= x ? 1 : 0);
+            const size_t cell = std::min(cell_first.size() - 1, static_cast<size_t>((x + 1.0) * cell_scale));
+            size_t k = static_cast<size_t>(cell_first[cell]);
+            while (k > 0 && cos_edges[k - 1] > x) --k;  // x rounded into the next cell
+            while (k < cos_edges.size() && cos_edges[k] <= x) ++k;
+            return static_cast<int>(k);
         }
         const int row = std::min(ncos - 1, static_cast<int>((1.0 - c) * 0.5 * ncos));
         double phi = std::atan2(d.dot(v), d.dot(u));

@@ -80,27 +80,25 @@ struct InteractionContext {
     bool adjoint = false;
 };
 
-// Reflectance of a dielectric for its model at cos θi and relative index eta (Constant,
-// Fresnel, Fresnel-s, Fresnel-p, Schlick); 1 on total internal reflection for the
-// physical models. Written over the scalar type (experiments count its arithmetic).
+// Reflectance of a dielectric for its model at cos θi, with cos θt from Snell's law (empty:
+// total internal reflection), and relative index eta (Constant, Fresnel, Fresnel-s,
+// Fresnel-p, Schlick); 1 on total internal reflection for the physical models. Written
+// over the scalar type (experiments count its arithmetic).
 template <class S>
-S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, S eta) {
+S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, const std::optional<S>& cos_t, S eta) {
     namespace gen = optics::generic;
     switch (model) {
         case ReflectanceModel::Constant: return constant;
-        case ReflectanceModel::Fresnel: return gen::fresnel_reflectance(cos_i, eta);
-        case ReflectanceModel::FresnelS: {
-            const auto f = gen::fresnel(cos_i, eta);
-            return f ? f->Rs : S(1.0);
-        }
-        case ReflectanceModel::FresnelP: {
-            const auto f = gen::fresnel(cos_i, eta);
-            return f ? f->Rp : S(1.0);
-        }
-        case ReflectanceModel::Schlick:
-            return gen::cos_transmitted(cos_i, eta) ? gen::schlick(cos_i, eta) : S(1.0);
+        case ReflectanceModel::Fresnel: return cos_t ? gen::fresnel_terms(cos_i, *cos_t, eta).R() : S(1.0);
+        case ReflectanceModel::FresnelS: return cos_t ? gen::fresnel_terms(cos_i, *cos_t, eta).Rs : S(1.0);
+        case ReflectanceModel::FresnelP: return cos_t ? gen::fresnel_terms(cos_i, *cos_t, eta).Rp : S(1.0);
+        case ReflectanceModel::Schlick: return cos_t ? gen::schlick(cos_i, eta) : S(1.0);
     }
     return S(1.0);
+}
+template <class S>
+S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, S eta) {
+    return dielectric_reflectance(model, constant, cos_i, optics::generic::cos_transmitted(cos_i, eta), eta);
 }
 
 // A dielectric node in the physical mode (Yasuda 1984 §3.1.3 ③ and ④): reflected and
@@ -122,22 +120,21 @@ template <class V>
 DielectricNode<V> dielectric_node(const V& dir, const V& normal, typename V::Scalar eta, ReflectanceModel model,
                                   typename V::Scalar constant, const V& filter) {
     using S = typename V::Scalar;
-    using std::fmin;
     namespace gen = optics::generic;
-    const S cos_i = fmin(S(-dir.dot(normal)), S(1.0));
-    const auto refr = gen::refract(dir, normal, eta);
-    // Constant reflectivity (Whitted, Fig. 9) keeps its ks even where the direction
-    // computation finds total internal reflection; then all light goes the mirror way.
-    const S R = refr ? dielectric_reflectance(model, constant, cos_i, eta) : S(1.0);
+    const S cos_i = gen::cos_incident(dir, normal);
+    const std::optional<S> cos_t = gen::cos_transmitted(cos_i, eta);  // Snell's law, once
+    // On total internal reflection all light goes the mirror way, whatever the model
+    // (a constant ks too, Whitted's Fig. 9).
+    const S R = cos_t ? dielectric_reflectance(model, constant, cos_i, cos_t, eta) : S(1.0);
     // Rays are unit length by convention: renormalise, or the rounding error of |dir|
     // grows about tenfold per bounce in a chain of internal reflections (the sphere
     // intersection assumes |dir| = 1, so the hit leaves the surface and the next normal
     // is off), and after ~10 bounces the path is wrong.
     DielectricNode<V> n{gen::reflect(dir, normal).normalized(), std::nullopt, R, V(), S(0.0)};
-    if (refr) {
+    if (cos_t) {
         n.transmit_factor = (S(1.0) - R) * filter;
         n.transmit_bailout = n.transmit_factor.maxCoeff();
-        n.refracted = refr->normalized();
+        n.refracted = gen::refracted_direction(dir, normal, cos_i, *cos_t, eta).normalized();
     }
     return n;
 }

@@ -95,16 +95,30 @@ V reflect(const V& d, const V& n) {
     return d - S(2.0) * d.dot(n) * n;
 }
 
-// RTIOW: R'⊥ = (η/η')(R + cosθ n), R'∥ = −sqrt(1 − |R'⊥|²) n, with η/η' = 1/eta.
+// cos θi of unit direction d at unit normal n (incident side), at most 1: fmin(−d·n, 1)
+// written out (a NaN gives 1, as fmin does), so that it is inlined.
+template <class V>
+typename V::Scalar cos_incident(const V& d, const V& n) {
+    using S = typename V::Scalar;
+    const S c = -d.dot(n);
+    return c < S(1.0) ? c : S(1.0);
+}
+
+// RTIOW: R'⊥ = (η/η')(R + cosθ n), R'∥ = −sqrt(1 − |R'⊥|²) n, with η/η' = 1/eta, for
+// cos θi and cos θt already known (Snell's law applied once per node).
+template <class V>
+V refracted_direction(const V& d, const V& n, typename V::Scalar cos_i, typename V::Scalar cos_t,
+                      typename V::Scalar eta) {
+    const V perp = (d + cos_i * n) / eta;
+    return V(perp - cos_t * n);
+}
+
 template <class V>
 std::optional<V> refract(const V& d, const V& n, typename V::Scalar eta) {
-    using S = typename V::Scalar;
-    using std::fmin;
-    const S cos_i = fmin(S(-d.dot(n)), S(1.0));
+    const auto cos_i = cos_incident(d, n);
     const auto cos_t = cos_transmitted(cos_i, eta);
     if (!cos_t) return std::nullopt;
-    const V perp = (d + cos_i * n) / eta;
-    return V(perp - *cos_t * n);
+    return refracted_direction(d, n, cos_i, *cos_t, eta);
 }
 
 // Yasuda et al. 1984 eq. 4, 2, 5, 3.

@@ -119,6 +119,12 @@ bool SceneTracer::facet_local() { return facet_local_on.load(std::memory_order_r
 
 std::optional<Hit> SceneTracer::intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
                                                RenderStats& stats) const {
+    if (const auto* s = std::get_if<Sphere>(&order_[k]->shape)) {
+        // A ray leaving a point of a sphere away from its centre never meets it again (a
+        // refracted ray leaving a drop, a reflection off its outside).
+        if ((ray.origin - s->center).dot(ray.dir) > 0) return std::nullopt;
+        return intersect_object(k, ray, t_min, t_max);
+    }
     const FacetGraph* graph = facet_graph_[k].get();
     if (!graph || from_facet < 0 || !facet_local()) return intersect_object(k, ray, t_min, t_max);
     const auto& c = std::get<ConvexPolyhedron>(order_[k]->shape);
@@ -179,7 +185,7 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
     const bool pov = scene_.settings.compat == Compat::PovRay;
     const double t_min = pov ? kPovMinDepth : kEpsilon;
     const double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
-    const size_t from_k = from.object >= 0 && from.facet >= 0 ? order_of_[static_cast<size_t>(from.object)] : SIZE_MAX;
+    const size_t from_k = from.object >= 0 ? order_of_[static_cast<size_t>(from.object)] : SIZE_MAX;
     if (const auto n = nearest(ray, t_min, t_max, [](size_t) { return true; }, from_k, from.facet, &stats)) {
         const Object& obj = *order_[n->k];
         best = SurfaceHit{n->hit, &obj, &scene_.materials[obj.material], n->hit.normal, true};

@@ -105,7 +105,8 @@ private:
     std::optional<Nearest> nearest(const Ray& ray, double t_min, double t_max, Use&& use, std::size_t from_k = SIZE_MAX,
                                    int from_facet = -1, RenderStats* stats = nullptr) const;
     std::optional<Hit> intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const;
-    // The same for the object the ray leaves, from its facet `from_facet`.
+    // The same for the object the ray leaves, from its facet `from_facet` (a sphere: none
+    // when the ray moves away from its centre).
     std::optional<Hit> intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
                                       RenderStats& stats) const;
     Vec3 light_transmittance(const Vec3& from, const Vec3& to, RenderStats& stats) const;

@@ -1,18 +1,23 @@
 // Facet-local intersection (geometry/facet_graph.h): a ray leaving a facet of a convex
 // plane set, decided from the planes around that facet and a guessed leaving facet, gives
 // the full plane loop's hit to the last bit, for right and wrong guesses; and whole
-// renders of the 1998 diamond are the same image with it and without it.
+// renders of the 1998 diamond are the same image with it and without it. A ray leaving a
+// sphere likewise meets what the full search over the spheres finds.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/light_pass.h"
+#include "core/optics.h"
 #include "core/render.h"
 #include "core/scene_json.h"
 #include "core/tracer.h"
@@ -202,4 +207,49 @@ TEST_CASE("Ohtsuka & Kawai 1998 diamond: the same image with facet-local interse
             for (int c = 0; c < 3; ++c)
                 differing += bits(full.image.at(i, j)[c]) != bits(local.image.at(i, j)[c]);
     CHECK(differing == 0);
+}
+
+TEST_CASE("A ray leaving a sphere meets the same surface whether or not the tracer knows the sphere it leaves",
+          "[geometry]") {
+    // A solid sphere, a hollow one (negative radius) and a third sphere behind them: rays from
+    // outside, then the reflected, refracted and random rays leaving each hit, asked with the
+    // hit's origin (outward rays skip the sphere they leave) and without it (every sphere
+    // tested in full).
+    const Scene s = parse_scene(nlohmann::json::parse(R"({
+        "camera": {"location": [0, 0, -6], "look_at": [0, 0, 0], "angle": 30, "width": 4, "height": 4},
+        "materials": {"glass": {"type": "dielectric", "ior": 1.5}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass"},
+                    {"type": "sphere", "center": [0.3, 0.1, 0], "radius": -0.4, "material": "glass"},
+                    {"type": "sphere", "center": [2.5, 0, 1], "radius": 0.8, "material": "glass"}]})"),
+                                "spheres.json");
+    const SceneTracer tracer(s);
+    RenderStats st;
+    std::mt19937_64 rng(7);
+    long compared = 0, outward = 0, mismatches = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 target = 1.2 * random_direction(rng);
+        const Vec3 origin = target - 5.0 * random_direction(rng);
+        Ray ray{origin, (target - origin).normalized()};
+        std::optional<SurfaceHit> h = tracer.intersect(ray, st);
+        for (int bounce = 0; h && bounce < 4; ++bounce) {
+            const auto refr = optics::refract(ray.dir, h->normal, h->entering ? 1.5 : 1 / 1.5);
+            std::vector<Vec3> dirs{optics::reflect(ray.dir, h->normal).normalized(), random_direction(rng)};
+            if (refr) dirs.push_back(refr->normalized());
+            for (const Vec3& d : dirs) {
+                const Ray leaving{h->hit.point, d};
+                const auto known = tracer.intersect(leaving, st, tracer.origin_of(*h));
+                const auto unknown = tracer.intersect(leaving, st);
+                ++compared;
+                outward += (h->hit.point - std::get<Sphere>(h->object->shape).center).dot(d) > 0;
+                const bool same = known.has_value() == unknown.has_value() &&
+                                  (!known || (known->object == unknown->object && identical(known->hit, unknown->hit)));
+                mismatches += !same;
+            }
+            ray = Ray{h->hit.point, dirs.back()};
+            h = tracer.intersect(ray, st, tracer.origin_of(*h));
+        }
+    }
+    CHECK(compared > 50000);
+    CHECK(outward > compared / 4);
+    CHECK(mismatches == 0);
 }

@@ -1,7 +1,9 @@
 // The far-field detector (core/far_field.h), collimated beams and a sun's angular size.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -120,6 +122,40 @@ TEST_CASE("Far field: the bins' solid angles cover the sphere", "[far-field]") {
     for (int b = 0; b < r.bins; ++b) sum += r.solid_angle(b);
     CHECK(sum == Approx(4 * M_PI).epsilon(1e-14));
     CHECK(r.bin_of(Vec3(std::sin(0.7), 0, std::cos(0.7))) == static_cast<int>(0.7 * 180 / M_PI));
+}
+
+TEST_CASE("Far field: an angle bin is the one whose edges bracket the polar angle, at the poles and on the edges",
+          "[far-field]") {
+    // θ-bin k holds cos θ in (cos θ_{k+1}, cos θ_k], θ_k = 180° k / n: the count of edges
+    // −cos θ_k (k = 1 … n − 1) at or below −cos θ, as std::upper_bound finds it.
+    for (const int n : {1, 2, 7, 180, 1000, 5000}) {
+        FarFieldResult r;
+        r.settings.binning = FarFieldSettings::Binning::Axis;
+        r.settings.axis = Vec3(0, 0, 1);
+        r.settings.angle_bins = n;
+        r.bins = n;
+        std::vector<double> edges;
+        for (int k = 1; k < n; ++k) edges.push_back(-std::cos(M_PI * k / n));
+        const auto expected = [&](const Vec3& d) {
+            const double c = std::clamp(d.normalized().dot(Vec3(0, 0, 1)), -1.0, 1.0);
+            return static_cast<int>(std::upper_bound(edges.begin(), edges.end(), -c) - edges.begin());
+        };
+        std::vector<Vec3> dirs{Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(1e-9, 0, 1), Vec3(1e-9, 0, -1)};
+        for (int k = 0; k <= n; ++k) {  // on each edge, and a hair either side
+            const double t = M_PI * k / n;
+            for (const double e : {-1e-13, 0.0, 1e-13}) dirs.emplace_back(std::sin(t + e), 0, std::cos(t + e));
+        }
+        for (int i = 0; i < 20000; ++i) {
+            const double z = -1 + 2 * (i + 0.5) / 20000, phi = i * 2.399963;
+            dirs.emplace_back(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
+        }
+        int wrong = 0;
+        for (const Vec3& d : dirs) wrong += r.bin_of(d) != expected(d);
+        INFO("bins " << n);
+        CHECK(wrong == 0);
+        CHECK(r.bin_of(Vec3(0, 0, 1)) == 0);
+        CHECK(r.bin_of(Vec3(0, 0, -1)) == n - 1);
+    }
 }
 
 TEST_CASE("Sun of angular diameter alpha: the light through an index-1 sphere spreads over its cone", "[far-field]") {
