@@ -21,6 +21,7 @@ struct FarFieldArgs {
     std::uint64_t max_memory = 0;
     std::uint64_t photons = 1000000, seed = 7;
     bool no_plot = false;
+    bool no_lanes = false;
 };
 
 refract::cli::Registrar reg{17, [](CLI::App& app) {
@@ -47,6 +48,8 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
     sub->add_option("--threads", a->threads, "Worker threads (0: all cores); the result does not depend on it")
         ->check(refract::cli::thread_range());
     sub->add_flag("--no-plot", a->no_plot, "Skip the gnuplot figure");
+    sub->add_flag("--no-lanes", a->no_lanes,
+                  "Walk each wavelength of a photon alone, not in packets of 8 (the same result, slower; for comparison)");
     sub->callback([a] {
         using namespace refract;
         const Scene scene = load_scene(a->scene);
@@ -63,6 +66,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
         s.seed = a->seed;
         s.max_memory = a->max_memory;
         s.wavelengths = a->wavelengths;
+        s.wavelength_lanes = !a->no_lanes;
         if (scene.lights.empty() && scene.background.kind != Background::Kind::Environment)
             throw InputError(a->scene + ": /lights: the far-field detector needs a light or an environment background");
         const FarFieldResult r = far_field(scene, s, a->threads);

@@ -24,6 +24,15 @@ namespace {
 
 constexpr double kFixedScale = 4503599627370496.0;  // 2^52 units for one wavelength's emitted power
 
+// std::llround(x) (halves away from zero), inlined for |x| < 2^52, where x minus its
+// truncation is exact.
+inline std::int64_t fixed(double x) {
+    if (!(std::abs(x) < kFixedScale)) return std::llround(x);
+    const auto r = static_cast<std::int64_t>(x);
+    const double frac = x - static_cast<double>(r);
+    return r + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
+}
+
 // The detector's directions: the axis and a frame across it.
 struct Geometry {
     FarFieldSettings::Binning binning;
@@ -123,24 +132,43 @@ struct FarFieldEnds {
     size_t slot(const Entry& e) const { return static_cast<size_t>(e.band) - w0; }
     std::int64_t* bins_of(const Entry& e) { return tally.bins.data() + slot(e) * per_wavelength; }
     void deposit(const TreeEntryT<NaturalLight>& e, int cls, int b) {
-        bins_of(e)[static_cast<size_t>(cls * bins + b)] += std::llround(amount(e) * scale);
+        bins_of(e)[static_cast<size_t>(cls * bins + b)] += fixed(amount(e) * scale);
     }
     void deposit(const TreeEntryT<LightStokes>& e, int cls, int b) {
         const Vec3& d = e.ray.dir;
         const polar::Stokes S = polar::rotator(polar::frame_angle(e.pol.x, geo.stokes_x(d), d)) * e.pol.S;
         std::int64_t* out = bins_of(e);
         for (int s = 0; s < 4; ++s)
-            out[static_cast<size_t>((cls * 4 + s) * bins + b)] += std::llround(amount(e) * S[s] * scale);
+            out[static_cast<size_t>((cls * 4 + s) * bins + b)] += fixed(amount(e) * S[s] * scale);
+    }
+    // The event class of a ray leaving after `reflections` internal reflections.
+    int event_class(int transmissions, int reflections) const {
+        const int cls = transmissions == 0 ? 0 : 1 + std::min<int>(reflections, classes - 2);
+        return std::min(cls, classes - 1);
     }
     void background(const Entry& e) {
         if (e.depth == 0) {
-            tally.unscattered[slot(e)] += std::llround(amount(e) * scale);
+            tally.unscattered[slot(e)] += fixed(amount(e) * scale);
             return;
         }
-        const int cls = e.transmissions == 0 ? 0 : 1 + std::min<int>(e.reflections, classes - 2);
-        deposit(e, std::min(cls, classes - 1), geo.bin_of(e.ray.dir));
+        deposit(e, event_class(e.transmissions, e.reflections), geo.bin_of(e.ray.dir));
     }
-    void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed[slot(e)] += std::llround(amount(e) * scale); }
+    // The lanes of a packet leaving the scene (natural light): background() for each.
+    void background_lanes(const LaneEntry& p, const LaneMask& m) {
+        const int cls = event_class(p.transmissions, p.reflections);
+        const Lanes mean = (p.weight[0] + p.weight[1] + p.weight[2]) / Lanes(3.0);  // amount(): Vec3::mean()
+        for (int l = 0; l < kLanes; ++l) {
+            if (!m[l]) continue;
+            const size_t w = static_cast<size_t>(p.band[static_cast<size_t>(l)]) - w0;
+            const double a = mean[l];
+            if (p.depth == 0)
+                tally.unscattered[w] += fixed(a * scale);
+            else
+                tally.bins[w * per_wavelength + static_cast<size_t>(cls * bins + geo.bin_of(p.dir.lane(l)))] +=
+                    fixed(a * scale);
+        }
+    }
+    void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed[slot(e)] += fixed(amount(e) * scale); }
     bool intercept(RayTreeWalkerT<P>&, const Entry&, const SurfaceHit&, typename RayTreeWalkerT<P>::List&) { return false; }
     double band_ior(const Entry& e, const SurfaceHit& h) const {
         return ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
@@ -280,23 +308,56 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                         RayTreeWalkerT<P> walker(tracer, limits, st);
                         FarFieldEnds<P> ends{geo, ctx, tally, scale, r.classes, r.components, r.bins, w0, per_wavelength};
                         typename RayTreeWalkerT<P>::List list;  // one list for the chunk's photons
+                        FifoList<LaneEntry> packets;
+                        // The weight the walker dropped for one wavelength of a photon (its power
+                        // rides on it), summed per cause from zero.
+                        const auto drop = [&](size_t w, double depth, double limits, double threshold) {
+                            tally.dropped[w - w0] += fixed((depth + limits + threshold) * scale);
+                        };
                         for (std::uint64_t p = range.begin(); p != range.end(); ++p) {
                             const auto [ray, power] = sample_photon(em, settings.seed + w0 * 0x9E3779B9ull, p);
                             TreeEntryT<P> e{ray, Vec3::Constant(power.mean())};
                             if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(pol, ray.dir);
                             const auto first = tracer.intersect(ray, st);  // the same at every wavelength
+                            if constexpr (std::is_same_v<P, NaturalLight>) {
+                                if (first && settings.wavelength_lanes) {
+                                    const SceneTracer::LaneHits h = SceneTracer::lanes_of(*first);
+                                    for (size_t w = w0; w < w0 + gw; w += kLanes) {
+                                        LaneEntry pk;
+                                        pk.origin = LaneVec3::broadcast(ray.origin);
+                                        pk.dir = LaneVec3::broadcast(ray.dir);
+                                        for (int c = 0; c < 3; ++c) pk.weight[c] = Lanes(e.weight[c]);
+                                        pk.bailout = Lanes(e.bailout);
+                                        pk.travelled = Lanes(0.0);
+                                        pk.facet.fill(-1);
+                                        for (int l = 0; l < kLanes; ++l) {
+                                            pk.active[l] = w + static_cast<size_t>(l) < w0 + gw;
+                                            pk.band[static_cast<size_t>(l)] = static_cast<std::int16_t>(pk.active[l] ? w + static_cast<size_t>(l) : w);
+                                        }
+                                        LaneLosses lost;
+                                        walker.arrive_lanes(pk, h, packets, ends, lost);
+                                        walker.walk_lanes(packets, ends, lost);
+                                        for (int l = 0; l < kLanes; ++l)
+                                            if (pk.active[l]) drop(w + static_cast<size_t>(l), lost.depth[l], lost.limits[l], lost.threshold[l]);
+                                    }
+                                    continue;
+                                }
+                            }
                             for (size_t w = w0; w < w0 + gw; ++w) {
                                 e.band = static_cast<std::int16_t>(w);
                                 if (!first) {
                                     ends.background(e);
                                     continue;
                                 }
-                                const double lost0 = st.lost_depth + st.lost_limits + st.lost_threshold;
+                                const double d0 = st.lost_depth, l0 = st.lost_limits, t0 = st.lost_threshold;
+                                st.lost_depth = st.lost_limits = st.lost_threshold = 0;
                                 walker.arrive(e, *first, list, ends);
                                 walker.walk(list, ends);
-                                // The weight the walker dropped (the photon's power rides on it).
-                                const double lost = st.lost_depth + st.lost_limits + st.lost_threshold - lost0;
-                                tally.dropped[w - w0] += std::llround(lost * scale);
+                                const double depth = st.lost_depth, limits = st.lost_limits, threshold = st.lost_threshold;
+                                st.lost_depth = d0 + depth;
+                                st.lost_limits = l0 + limits;
+                                st.lost_threshold = t0 + threshold;
+                                drop(w, depth, limits, threshold);
                             }
                         }
                     };

@@ -33,13 +33,28 @@ struct WhittedDirections {
     std::optional<V> transmitted;  // P, not normalised; empty on TIR
 };
 
-// Snell's law: sin θt = sin θi / eta.
+// a < b ? a : b (lane types, geometry/lanes.h, have their own, lane by lane).
+template <class S>
+S min_of(S a, S b) {
+    return a < b ? a : b;
+}
+
+// Snell's law: sin θt = sin θi / eta, as sin²θt (total internal reflection where it is
+// >= 1), and cos θt from it.
+template <class S>
+S sin2_transmitted(S cos_i, S eta) {
+    return (S(1.0) - cos_i * cos_i) / (eta * eta);
+}
+template <class S>
+S cos_of_sin2(S sin2) {
+    using std::sqrt;
+    return sqrt(S(1.0) - sin2);
+}
 template <class S>
 std::optional<S> cos_transmitted(S cos_i, S eta) {
-    using std::sqrt;
-    const S sin2_t = (S(1.0) - cos_i * cos_i) / (eta * eta);
+    const S sin2_t = sin2_transmitted(cos_i, eta);
     if (sin2_t >= S(1.0)) return std::nullopt;
-    return sqrt(S(1.0) - sin2_t);
+    return cos_of_sin2(sin2_t);
 }
 
 // Fresnel amplitude coefficients of the s and p components (Hecht, Optics, §4.6.2, in the
@@ -100,8 +115,7 @@ V reflect(const V& d, const V& n) {
 template <class V>
 typename V::Scalar cos_incident(const V& d, const V& n) {
     using S = typename V::Scalar;
-    const S c = -d.dot(n);
-    return c < S(1.0) ? c : S(1.0);
+    return min_of(S(-d.dot(n)), S(1.0));
 }
 
 // RTIOW: R'⊥ = (η/η')(R + cosθ n), R'∥ = −sqrt(1 − |R'⊥|²) n, with η/η' = 1/eta, for

@@ -20,11 +20,14 @@
 // vector for a light pass; the walker updates it with each branch's Mueller matrix.
 #include <cstdint>
 #include <initializer_list>
+#include <array>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/polarisation_state.h"
 #include "core/tracer.h"
+#include "geometry/lanes.h"
 
 namespace refract {
 
@@ -84,6 +87,13 @@ public:
     size_t size() const { return items_.size() - head_; }
     T& front() { return items_[head_]; }
     void push_back(const T& t) { items_.push_back(t); }
+    // A new entry at the back, to be filled in place (default-constructed), and its removal.
+    T& emplace_back() { return items_.emplace_back(); }
+    void pop_back() { items_.pop_back(); }
+    // Room for n more entries: front() stays where it is through n push_back()s.
+    void reserve_more(size_t n) {
+        if (items_.capacity() < items_.size() + n) items_.reserve(2 * (items_.size() + n));
+    }
     void pop_front() {
         if (++head_ == items_.size()) {
             items_.clear();
@@ -97,6 +107,49 @@ public:
 private:
     std::vector<T> items_;
     size_t head_ = 0;
+};
+
+// A packet of the walk (RayTreeWalkerT::walk_lanes): the same node of the trees of up to
+// kLanes rays that differ only in their band (the wavelengths of one photon), which follow
+// the same branches through the same surfaces. Per lane what a TreeEntry holds; shared the
+// counters and the object the rays leave. Natural light only. Lanes not in use keep a
+// valid band (the index of a band is looked up for every lane).
+struct LaneEntry {
+    LaneVec3 origin, dir;
+    Lanes weight[3];  // per colour channel
+    Lanes bailout, travelled;
+    LaneMask active;
+    std::array<std::int16_t, kLanes> band{};
+    std::array<std::int32_t, kLanes> facet{};  // the facet each ray leaves
+    std::int32_t object = -1;                  // the object they leave (−1: none)
+    std::int16_t depth = 0, reflections = 0, transmissions = 0;
+
+    // Lane l as the walker's entry.
+    TreeEntry lane(int l) const {
+        TreeEntry e{Ray{origin.lane(l), dir.lane(l)}, Vec3(weight[0][l], weight[1][l], weight[2][l]), bailout[l]};
+        e.depth = depth;
+        e.reflections = reflections;
+        e.transmissions = transmissions;
+        e.band = band[static_cast<size_t>(l)];
+        e.travelled = travelled[l];
+        e.from = RayOrigin{object, facet[static_cast<size_t>(l)]};
+        return e;
+    }
+};
+
+// Ends that take the lanes of a packet leaving the scene at once
+// (`void background_lanes(const LaneEntry&, const LaneMask&)`, as background() for each).
+template <class Ends, class = void>
+struct BackgroundLanes : std::false_type {};
+template <class Ends>
+struct BackgroundLanes<Ends, std::void_t<decltype(std::declval<Ends&>().background_lanes(
+                                 std::declval<const LaneEntry&>(), std::declval<const LaneMask&>()))>>
+    : std::true_type {};
+
+// The light each lane's dropped branches would have carried in a lane walk, per cause,
+// each summed from zero in the order walk() would drop them.
+struct LaneLosses {
+    Lanes depth{0.0}, limits{0.0}, threshold{0.0};
 };
 
 template <class P>
@@ -169,20 +222,9 @@ public:
     bool push(const Entry& e, const SurfaceHit& h, const Branch& br, const polar::Mueller& M, bool transmitted,
               List& list, const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
         const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
-        if (a.bailout <= 0 || a.bailout < limits_.threshold) {
-            ++stats_.pruned;
-            stats_.lost_threshold += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
-            return false;
-        }
         const int refl = e.reflections + (transmitted ? 0 : 1), trans = e.transmissions + (transmitted ? 1 : 0);
-        if (e.depth + 1 > limits_.max_depth) {
-            ++stats_.depth_limited;
-            stats_.lost_depth += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
-            return false;
-        }
-        if (refl > limits_.max_reflections || trans > limits_.max_transmissions) {
-            ++stats_.depth_limited;
-            stats_.lost_limits += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
+        if (const Cut c = cut(e.depth, refl, trans, a.bailout); c != Cut::Kept) {
+            count(c) += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
             return false;
         }
         list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
@@ -192,24 +234,206 @@ public:
         return true;
     }
 
+    // ⑤–⑥ on packets (natural light): the rays of each packet are searched together, and
+    // where all of them meet the same isotropic dielectric (physical mode, Fresnel
+    // reflectance, no absorption) its node is computed on every lane at once and both
+    // branches go on as packets; a lane that meets anything else leaves the packet and its
+    // tree is walked alone by walk(). Each lane's tree is the one walk() walks for its ray,
+    // to the last bit. `lost` gathers what each lane's dropped branches carried. The ends
+    // must not intercept hits (intercept() false).
+    template <class Ends>
+    void walk_lanes(FifoList<LaneEntry>& list, Ends& ends, LaneLosses& lost) {
+        static_assert(std::is_same_v<P, NaturalLight>, "lane walks carry natural light");
+        std::uint64_t walked = 0;
+        while (!list.empty()) {
+            if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
+                tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
+            list.reserve_more(2);  // p's children: p stays in place until it is popped
+            const LaneEntry& p = list.front();
+            const SceneTracer::LaneHits h = tracer_.intersect_lanes(p.origin, p.dir, p.active, p.object, p.facet, stats_);
+            const LaneMask missed = p.active && !h.hit;
+            if (missed.any()) background_lanes(p, missed, ends);
+            arrive_lanes(p, h, list, ends, lost);
+            list.pop_front();
+        }
+    }
+
+    // Packet p has met its surfaces at h (found by walk_lanes, or once for all lanes).
+    template <class Ends>
+    __attribute__((flatten)) void arrive_lanes(const LaneEntry& p, const SceneTracer::LaneHits& h, FifoList<LaneEntry>& list, Ends& ends,
+                      LaneLosses& lost) {
+        const LaneMask at = p.active && h.hit;
+        int first = -1;
+        for (int l = kLanes - 1; l >= 0; --l)
+            if (at[l]) first = l;
+        if (first < 0) return;
+        const SurfaceHit h0 = tracer_.surface_hit(h, first);
+        const RenderSettings& settings = tracer_.settings();
+        const auto* d = h0.material->dielectric();
+        bool together = d && d->reflectance == ReflectanceModel::Fresnel && !tracer_.absorbing() &&
+                        settings.compat == Compat::Physical && settings.polarisation != PolarisationModel::Exact;
+        for (int l = 0; l < kLanes && together; ++l)
+            together = !at[l] || (h.object[static_cast<size_t>(l)] == h0.object && h.entering[l] == h0.entering);
+        if (!together) {  // lane by lane
+            for (int l = 0; l < kLanes; ++l)
+                if (at[l]) walk_alone(p.lane(l), tracer_.surface_hit(h, l), ends, lost, l);
+            return;
+        }
+        stats_.tree_nodes += static_cast<std::uint64_t>(at.count());
+        // The node of core/interaction.h dielectric_node on every lane, from the same laws.
+        // Each lane's index at its band (the ends' band_ior, a function of the band and the
+        // material), kept for the next node in the same material with the same bands.
+        if (h0.material != ior_material_ || p.band != ior_bands_) {
+            ior_material_ = h0.material;
+            ior_bands_ = p.band;
+            ior_ = Lanes(d->ior);
+            Entry probe = p.lane(first);
+            for (int l = 0; l < kLanes; ++l) {
+                probe.band = p.band[static_cast<size_t>(l)];
+                const double b = ends.band_ior(probe, h0);
+                if (b > 0) ior_[l] = b;
+            }
+            inverse_ior_ = Lanes(1.0) / ior_;
+        }
+        namespace gen = optics::generic;
+        const Lanes& eta = h0.entering ? ior_ : inverse_ior_;  // as dielectric interact(): ior or 1 / ior
+        const Lanes cos_i = gen::cos_incident(p.dir, h.normal);
+        const Lanes sin2_t = gen::sin2_transmitted(cos_i, eta);
+        const LaneMask tir = sin2_t >= Lanes(1.0);
+        const Lanes cos_t = gen::cos_of_sin2(sin2_t);  // NaN under total internal reflection
+        const Lanes R = select(tir, Lanes(1.0), gen::fresnel_terms(cos_i, cos_t, eta).R());
+        const LaneVec3 reflected = gen::reflect(p.dir, h.normal).normalized();
+        const LaneVec3 refracted = gen::refracted_direction(p.dir, h.normal, cos_i, cos_t, eta).normalized();
+        Lanes transmit_factor[3];
+        for (int c = 0; c < 3; ++c) transmit_factor[c] = (Lanes(1.0) - R) * Lanes(d->filter[c]);
+        Lanes transmit_bailout = transmit_factor[0];  // the largest component, as maxCoeff
+        for (int c = 1; c < 3; ++c)
+            transmit_bailout = select(transmit_factor[c] > transmit_bailout, transmit_factor[c], transmit_bailout);
+        const Lanes reflect_factor[3] = {R, R, R};
+        const std::int32_t object = tracer_.origin_of(h0).object;
+        push_lanes(p, h, object, at, reflected, reflect_factor, R, false, list, ends, lost);
+        push_lanes(p, h, object, at && !tir && (R < Lanes(1.0)), refracted, transmit_factor, transmit_bailout, true,
+                   list, ends, lost);
+    }
+
 private:
-    // The light a dropped child would have carried for unpolarised light: its colour
-    // weight's mean, times the Fresnel part its polarisation payload holds.
-    double dropped(const Entry& e, const SurfaceHit& h, const Branch& br, const Vec3& weight, const polar::Mueller& M,
-                   int band) const {
-        const int k = band == -2 ? e.band : band;
+    // Why push() drops a child: the threshold, the depth limit, the reflection/transmission
+    // limits (in this order), or not at all.
+    enum class Cut { Kept, Threshold, Depth, Limits };
+    Cut cut(int depth, int refl, int trans, double bailout) const {
+        if (bailout <= 0 || bailout < limits_.threshold) return Cut::Threshold;
+        if (depth + 1 > limits_.max_depth) return Cut::Depth;
+        if (refl > limits_.max_reflections || trans > limits_.max_transmissions) return Cut::Limits;
+        return Cut::Kept;
+    }
+    // Counts a dropped child; the sum its light is added to.
+    double& count(Cut c) {
+        if (c == Cut::Threshold) {
+            ++stats_.pruned;
+            return stats_.lost_threshold;
+        }
+        ++stats_.depth_limited;
+        return c == Cut::Depth ? stats_.lost_depth : stats_.lost_limits;
+    }
+
+    // Lane l of a lane walk on its own: its tree by walk(), its losses into lane l.
+    template <class Ends>
+    void walk_alone(const Entry& e, const SurfaceHit& h, Ends& ends, LaneLosses& lost, int l) {
+        const double d0 = stats_.lost_depth, l0 = stats_.lost_limits, t0 = stats_.lost_threshold;
+        stats_.lost_depth = stats_.lost_limits = stats_.lost_threshold = 0;
+        List alone;
+        arrive(e, h, alone, ends);
+        walk(alone, ends);
+        lost.depth[l] += stats_.lost_depth;
+        lost.limits[l] += stats_.lost_limits;
+        lost.threshold[l] += stats_.lost_threshold;
+        stats_.lost_depth += d0;
+        stats_.lost_limits += l0;
+        stats_.lost_threshold += t0;
+    }
+
+    // ⑥ on packets: the children of packet p along one branch (direction `dir`, colour
+    // factors f, threshold factor bf) in the lanes of `mask`, unless push()'s rules drop them.
+    template <class Ends>
+    void push_lanes(const LaneEntry& p, const SceneTracer::LaneHits& h, std::int32_t object, const LaneMask& mask,
+                    const LaneVec3& dir, const Lanes (&f)[3], const Lanes& bf, bool transmitted,
+                    FifoList<LaneEntry>& list, Ends& ends, LaneLosses& lost) {
+        if (!mask.any()) return;
+        LaneEntry c;
+        c.bailout = p.bailout * bf;
+        for (int k = 0; k < 3; ++k) c.weight[k] = p.weight[k] * f[k];
+        c.active = mask;
+        const int refl = p.reflections + (transmitted ? 0 : 1), trans = p.transmissions + (transmitted ? 1 : 0);
+        for (int l = 0; l < kLanes; ++l) {
+            if (!mask[l]) continue;
+            const Cut why = cut(p.depth, refl, trans, c.bailout[l]);
+            if (why == Cut::Kept) continue;
+            c.active[l] = false;
+            const Vec3 w(c.weight[0][l], c.weight[1][l], c.weight[2][l]);
+            const double amount = band_weighted_mean(w, p.band[static_cast<size_t>(l)]);
+            count(why) += amount;
+            (why == Cut::Threshold ? lost.threshold : why == Cut::Depth ? lost.depth : lost.limits)[l] += amount;
+        }
+        if (!c.active.any()) return;
+        c.origin = h.point;
+        c.dir = dir;
+        c.travelled = p.travelled + h.t;
+        c.band = p.band;
+        c.facet = h.facet;
+        c.object = object;
+        c.depth = static_cast<std::int16_t>(p.depth + 1);
+        c.reflections = static_cast<std::int16_t>(refl);
+        c.transmissions = static_cast<std::int16_t>(trans);
+        // Children known to leave the scene end here, as the walk would end them.
+        const LaneMask gone = tracer_.escaping_lanes(object, c.origin, c.dir, c.active, stats_);
+        if (gone.any()) {
+            background_lanes(c, gone, ends);
+            c.active = c.active && !gone;
+            if (!c.active.any()) return;
+        }
+        list.push_back(c);
+    }
+
+    // The lanes m of packet p left the scene.
+    template <class Ends>
+    static void background_lanes(const LaneEntry& p, const LaneMask& m, Ends& ends) {
+        if constexpr (BackgroundLanes<Ends>::value) {
+            ends.background_lanes(p, m);
+        } else {
+            for (int l = 0; l < kLanes; ++l)
+                if (m[l]) ends.background(p.lane(l));
+        }
+    }
+
+    // A dropped child's colour weight for the threshold's bookkeeping: its mean, after the
+    // band's RGB weight where the walk has one (0 for bands past the end).
+    double band_weighted_mean(const Vec3& weight, int k) const {
         Vec3 w = weight;
         if (k >= 0 && limits_.band_weights) {
             const auto& bw = *limits_.band_weights;
             if (static_cast<size_t>(k) >= bw.size()) return 0.0;
             w = w.cwiseProduct(bw[static_cast<size_t>(k)]);
         }
-        return w.mean() * throughput(descend(e.pol, h.normal, e.ray.dir, M, br.frame_parent, br.frame_child));
+        return w.mean();
+    }
+
+    // The light a dropped child would have carried for unpolarised light: its colour
+    // weight's mean, times the Fresnel part its polarisation payload holds.
+    double dropped(const Entry& e, const SurfaceHit& h, const Branch& br, const Vec3& weight, const polar::Mueller& M,
+                   int band) const {
+        const int k = band == -2 ? e.band : band;
+        if (k >= 0 && limits_.band_weights && static_cast<size_t>(k) >= limits_.band_weights->size()) return 0.0;
+        return band_weighted_mean(weight, k) *
+               throughput(descend(e.pol, h.normal, e.ray.dir, M, br.frame_parent, br.frame_child));
     }
 
     const SceneTracer& tracer_;
     TreeLimits limits_;
     RenderStats& stats_;
+    // Lane walks: the indices of the last packet's bands in the last material met.
+    const Material* ior_material_ = nullptr;
+    std::array<std::int16_t, kLanes> ior_bands_{};
+    Lanes ior_{0.0}, inverse_ior_{0.0};
 };
 using RayTreeWalker = RayTreeWalkerT<NaturalLight>;
 

@@ -37,6 +37,7 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
         facet_base_[k] = static_cast<std::int32_t>(facet_ids_);
         facet_ids_ += c->planes.size();
     }
+    for (const Object* o : order_) spheres_only_ = spheres_only_ && std::holds_alternative<Sphere>(o->shape);
     static std::atomic<std::uint64_t> tracers{0};
     id_ = ++tracers;
     if (order_.size() >= kBvhMinObjects) {
@@ -195,6 +196,97 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
         best->normal = best->entering ? best->hit.normal : Vec3(-best->hit.normal);
     }
     return best;
+}
+
+SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+                                                   std::int32_t from_object,
+                                                   const std::array<std::int32_t, kLanes>& from_facet,
+                                                   RenderStats& stats) const {
+    LaneHits out;
+    out.hit = LaneMask::Constant(false);
+    out.entering = LaneMask::Constant(false);
+    out.facet.fill(-1);
+    if (bvh_ || !spheres_only_) {  // lane by lane
+        out.t = Lanes(0.0);
+        out.point = out.normal = LaneVec3::broadcast(Vec3::Zero());
+        for (int l = 0; l < kLanes; ++l) {
+            if (!active[l]) continue;
+            const auto h = intersect(Ray{origin.lane(l), dir.lane(l)}, stats, RayOrigin{from_object, from_facet[static_cast<size_t>(l)]});
+            if (!h) continue;
+            out.hit[l] = true;
+            out.t[l] = h->hit.t;
+            out.point.set(l, h->hit.point);
+            out.normal.set(l, h->normal);
+            out.entering[l] = h->entering;
+            out.object[static_cast<size_t>(l)] = h->object;
+            out.facet[static_cast<size_t>(l)] = h->hit.facet;
+        }
+        return out;
+    }
+    stats.segments += static_cast<std::uint64_t>(active.count());
+    const bool pov = scene_.settings.compat == Compat::PovRay;
+    const double t_min = pov ? kPovMinDepth : kEpsilon;
+    Lanes best(pov ? kPovMaxDistance : std::numeric_limits<double>::infinity());
+    const size_t from_k = from_object >= 0 ? order_of_[static_cast<size_t>(from_object)] : SIZE_MAX;
+    LaneVec3 outward;
+    // In order, as nearest(): a hit replaces the best one only when strictly nearer.
+    for (size_t k = 0; k < order_.size(); ++k) {
+        const Sphere& s = std::get<Sphere>(order_[k]->shape);
+        LaneMask ask = active;
+        if (k == from_k) ask = ask && !((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));  // intersect_from
+        if (!ask.any()) continue;
+        const LaneSphereHits h = refract::intersect_lanes(s, origin, dir, ask, t_min, best);
+        if (!h.hit.any()) continue;
+        if (out.hit.any()) {
+            best = select(h.hit, h.t, best);
+            out.point = select(h.hit, h.point, out.point);
+            outward = select(h.hit, h.normal, outward);
+            out.hit = out.hit || h.hit;
+        } else {  // the first object hit (the lanes that missed it keep t_max)
+            best = select(h.hit, h.t, best);
+            out.point = h.point;
+            outward = h.normal;
+            out.hit = h.hit;
+        }
+        for (int l = 0; l < kLanes; ++l)
+            if (h.hit[l]) out.object[static_cast<size_t>(l)] = order_[k];
+    }
+    out.t = best;
+    if (!out.hit.any()) return out;
+    // As intersect(): entering where the outward normal faces the ray, the normal turned to
+    // the incident side.
+    out.entering = outward.dot(dir) < Lanes(0.0);
+    out.normal = select(out.entering, outward, -outward);
+    return out;
+}
+
+LaneMask SceneTracer::escaping_lanes(std::int32_t object, const LaneVec3& origin, const LaneVec3& dir,
+                                     const LaneMask& active, RenderStats& stats) const {
+    if (order_.size() != 1 || !spheres_only_ || object < 0) return LaneMask::Constant(false);
+    const Sphere& s = std::get<Sphere>(order_[0]->shape);
+    const LaneMask gone = active && ((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));
+    stats.segments += static_cast<std::uint64_t>(gone.count());
+    return gone;
+}
+
+SceneTracer::LaneHits SceneTracer::lanes_of(const SurfaceHit& s) {
+    LaneHits h;
+    h.hit = LaneMask::Constant(true);
+    h.t = Lanes(s.hit.t);
+    h.point = LaneVec3::broadcast(s.hit.point);
+    h.normal = LaneVec3::broadcast(s.normal);
+    h.entering = LaneMask::Constant(s.entering);
+    h.object.fill(s.object);
+    h.facet.fill(s.hit.facet);
+    return h;
+}
+
+SurfaceHit SceneTracer::surface_hit(const LaneHits& h, int l) const {
+    const Object* o = h.object[static_cast<size_t>(l)];
+    const Vec3 n = h.normal.lane(l);
+    SurfaceHit s{Hit{h.t[l], h.point.lane(l), h.entering[l] ? n : Vec3(-n), h.facet[static_cast<size_t>(l)]}, o,
+                 &scene_.materials[o->material], n, h.entering[l]};
+    return s;
 }
 
 Vec3 SceneTracer::background(const Vec3& dir) const { return scene_.background.radiance(dir); }

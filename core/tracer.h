@@ -37,6 +37,31 @@ public:
     // the last bit. Guesses are remembered per thread, per starting facet and direction:
     // the 31 rays of a spectral split cross mostly the same facets, one after another.
     std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats, RayOrigin from = {}) const;
+    // The nearest hits of kLanes rays at once (a packet, geometry/lanes.h), all leaving the
+    // object `from_object` (-1: none), each from its facet: in every lane of `active`,
+    // intersect()'s answer bit for bit (counted as one segment per lane). Scenes of spheres
+    // only are searched on all lanes together; others lane by lane through intersect().
+    struct LaneHits {
+        LaneMask hit;
+        Lanes t;
+        LaneVec3 point, normal;  // normal on the incident side
+        LaneMask entering;
+        std::array<const Object*, kLanes> object{};
+        std::array<std::int32_t, kLanes> facet{};
+    };
+    LaneHits intersect_lanes(const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+                             std::int32_t from_object, const std::array<std::int32_t, kLanes>& from_facet,
+                             RenderStats& stats) const;
+    // The lanes whose rays, leaving object `object` (an index in Scene::objects) from its
+    // surface at `origin`, meet nothing: where the scene holds that one sphere and nothing
+    // else, and the ray moves away from its centre (as intersect() decides it). Counted as
+    // the segments intersect() would have traced.
+    LaneMask escaping_lanes(std::int32_t object, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+                            RenderStats& stats) const;
+    // The same hit in every lane.
+    static LaneHits lanes_of(const SurfaceHit& h);
+    // Lane l of `h` as intersect() returns it.
+    SurfaceHit surface_hit(const LaneHits& h, int l) const;
     // The RayOrigin of the branches leaving hit h.
     RayOrigin origin_of(const SurfaceHit& h) const {
         return {static_cast<std::int32_t>(h.object - scene_.objects.data()), h.hit.facet};
@@ -123,6 +148,7 @@ private:
     std::size_t facet_ids_ = 0;
     std::uint64_t id_ = 0;                                  // this tracer, for the per-thread guesses
     bool absorbing_ = false;
+    bool spheres_only_ = true;  // every object a sphere: intersect_lanes tests them on all lanes
     Camera::Basis camera_basis_;
 };
 

@@ -11,11 +11,7 @@
 namespace refract {
 
 std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max) {
-    // |o + t d − c|² = ρ², with |d| = 1: t² + 2 b t + c = 0 (half-b form).
-    const Vec3 oc = r.origin - s.center;
-    const double b = oc.dot(r.dir);
-    const double c = oc.squaredNorm() - s.radius * s.radius;
-    const double disc = b * b - c;
+    const auto [b, disc] = sphere_quadratic<Vec3>(r.origin - s.center, r.dir, s.radius);
     if (disc < 0) return std::nullopt;
     const double sq = std::sqrt(disc);
     double t = -b - sq;
@@ -28,6 +24,23 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
     h.t = t;
     h.point = r.at(t);
     h.normal = ((h.point - s.center) / s.radius).normalized();  // negative radius: flipped (RTIOW)
+    return h;
+}
+
+__attribute__((flatten)) LaneSphereHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir,
+                                                        const LaneMask& active, double t_min, const Lanes& t_max) {
+    const LaneVec3 centre = LaneVec3::broadcast(s.center);
+    const auto [b, disc] = sphere_quadratic<LaneVec3>(origin - centre, dir, Lanes(s.radius));
+    const Lanes sq = sqrt(disc);  // NaN where disc < 0: no hit there
+    const Lanes near = -b - sq, far = -b + sq;
+    const Lanes lo(t_min);
+    // As the scalar test: the nearer root if it lies in (t_min, t_max), else the farther.
+    const LaneMask near_ok = (near > lo) && (near < t_max), far_ok = (far > lo) && (far < t_max);
+    LaneSphereHits h;
+    h.hit = active && !(disc < Lanes(0.0)) && (near_ok || far_ok);
+    h.t = select(near_ok, near, far);
+    h.point = origin + h.t * dir;
+    h.normal = ((h.point - centre) / Lanes(s.radius)).normalized();
     return h;
 }
 

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "geometry/lanes.h"
 #include "geometry/ray.h"
 
 namespace refract {
@@ -57,6 +58,32 @@ bool misses_bound(const ConvexPolyhedron& c, const Ray& r);
 using Shape = std::variant<Sphere, Plane, TriangleMesh, ConvexPolyhedron>;
 
 std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max);
+
+// The sphere's quadratic |o + t d − c|² = ρ² for |d| = 1, oc = o − c, in half-b form
+// t² + 2 b t + c = 0: b and the discriminant b² − c (no hit where it is negative). Over the
+// vector type V (Vec3, LaneVec3).
+template <class V>
+struct SphereQuadratic {
+    typename V::Scalar b, disc;
+};
+template <class V>
+SphereQuadratic<V> sphere_quadratic(const V& oc, const V& dir, typename V::Scalar radius) {
+    using S = typename V::Scalar;
+    const S b = oc.dot(dir);
+    const S c = oc.squaredNorm() - radius * radius;
+    return {b, b * b - c};
+}
+
+// The sphere test on kLanes rays at once (geometry/lanes.h): in each lane of `active`, the
+// hit of intersect(s, ray, t_min, t_max[lane]) bit for bit: `hit` where there is one, with
+// its t, point and outward normal (other lanes: unspecified).
+struct LaneSphereHits {
+    LaneMask hit;
+    Lanes t;
+    LaneVec3 point, normal;
+};
+LaneSphereHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+                               double t_min, const Lanes& t_max);
 std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);

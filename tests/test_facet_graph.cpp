@@ -253,3 +253,39 @@ TEST_CASE("A ray leaving a sphere meets the same surface whether or not the trac
     CHECK(outward > compared / 4);
     CHECK(mismatches == 0);
 }
+
+TEST_CASE("The sphere test on a packet of rays equals the one-ray test in every lane, bit for bit", "[geometry]") {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    long compared = 0, hits = 0, mismatches = 0;
+    for (const double radius : {1.0, -0.7, 1e-3}) {
+        const Sphere s{Vec3(0.1, -0.2, 0.3), radius};
+        for (int i = 0; i < 4000; ++i) {
+            LaneVec3 o, d;
+            Lanes t_max;
+            LaneMask active;
+            for (int l = 0; l < kLanes; ++l) {
+                // From outside, from inside and from the surface, in any direction.
+                const Vec3 dir = random_direction(rng);
+                const double r = std::abs(radius) * (l % 3 == 0 ? 3.0 : l % 3 == 1 ? 0.5 : 1.0);
+                o.set(l, s.center + r * random_direction(rng));
+                d.set(l, dir);
+                t_max[l] = l % 4 == 3 ? std::abs(radius) * (1 + u(rng)) : kInf;
+                active[l] = l != 5 || i % 2 == 0;
+            }
+            const LaneSphereHits h = intersect_lanes(s, o, d, active, 1e-6, t_max);
+            for (int l = 0; l < kLanes; ++l) {
+                if (!active[l]) continue;
+                ++compared;
+                const auto want = intersect(s, Ray{o.lane(l), d.lane(l)}, 1e-6, t_max[l]);
+                std::optional<Hit> got;
+                if (h.hit[l]) got = Hit{h.t[l], h.point.lane(l), h.normal.lane(l), -1};
+                hits += want.has_value();
+                mismatches += !identical(want, got);
+            }
+        }
+    }
+    CHECK(compared > 80000);
+    CHECK(hits > compared / 3);
+    CHECK(mismatches == 0);
+}

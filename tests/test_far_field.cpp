@@ -283,3 +283,73 @@ TEST_CASE("Beams, environments and far-away lights: values that would overflow t
     CHECK_THROWS_WITH(far_field(far, axis_bins(10, 100), 1), Catch::Contains("far.json: /lights/0") &&
                                                                  Catch::Contains("overflows"));
 }
+
+namespace {
+
+// A far field walked with the wavelengths of each photon in packets and one by one.
+struct LanePair {
+    FarFieldResult lanes, alone;
+};
+LanePair lanes_and_alone(const json& scene, FarFieldSettings s) {
+    const Scene sc = parse_scene(scene, "lanes.json");
+    s.wavelength_lanes = true;
+    LanePair p{far_field(sc, s, 2), {}};
+    s.wavelength_lanes = false;
+    p.alone = far_field(sc, s, 2);
+    return p;
+}
+
+// Scattered power, unscattered and absorbed light and segments equal to the last bit; the
+// dropped light summed in the same order (`dropped_exact`) or to rounding.
+void check_same(const LanePair& p, bool dropped_exact) {
+    REQUIRE(p.lanes.power.size() == p.alone.power.size());
+    long differing = 0;
+    for (size_t k = 0; k < p.lanes.power.size(); ++k) differing += p.lanes.power[k] != p.alone.power[k];
+    CHECK(differing == 0);
+    CHECK(p.lanes.unscattered == p.alone.unscattered);
+    CHECK(p.lanes.absorbed == p.alone.absorbed);
+    CHECK(p.lanes.segments == p.alone.segments);
+    for (size_t w = 0; w < p.lanes.dropped.size(); ++w) {
+        if (dropped_exact)
+            CHECK(p.lanes.dropped[w] == p.alone.dropped[w]);
+        else
+            CHECK(p.lanes.dropped[w] == Approx(p.alone.dropped[w]).margin(1e-14));
+    }
+}
+
+json dispersive_drop() {
+    json j = drop_scene(1.333);
+    j["materials"]["glass"]["dispersion"] = "water";
+    return j;
+}
+
+}  // namespace
+
+TEST_CASE("Far field: the wavelengths of a photon walked in packets give the one-by-one result to the last bit",
+          "[far-field]") {
+    SECTION("a dispersive drop, 31 wavelengths") {
+        check_same(lanes_and_alone(dispersive_drop(), axis_bins(180, 20000)), true);
+    }
+    SECTION("a drop with a bubble and a second drop (several spheres)") {
+        json j = dispersive_drop();
+        j["objects"].push_back({{"type", "sphere"}, {"center", {0.2, 0.1, 0}}, {"radius", -0.3}, {"material", "glass"}});
+        j["objects"].push_back({{"type", "sphere"}, {"center", {0.5, 0.2, 3}}, {"radius", 0.7}, {"material", "glass"}});
+        FarFieldSettings s = axis_bins(90, 10000);
+        s.binning = FarFieldSettings::Binning::Sphere;
+        s.azimuth_bins = 24;
+        s.polar_bins = 12;
+        check_same(lanes_and_alone(j, s), true);
+    }
+    SECTION("a prism (plane set) and a Schlick drop: lanes walked alone") {
+        json j = dispersive_drop();
+        // A slab behind the drop, 1.5 < z < 2.5, bounded sideways: a plane set.
+        j["objects"].push_back({{"type", "polyhedron"},
+                                {"material", "glass"},
+                                {"planes", {{0, 0, 1, 2.5}, {0, 0, -1, -1.5}, {1, 0, 0, 1.5}, {-1, 0, 0, 1.5},
+                                            {0, 1, 0, 1.5}, {0, -1, 0, 1.5}}}});
+        check_same(lanes_and_alone(j, axis_bins(90, 5000)), false);
+        json k = dispersive_drop();
+        k["materials"]["glass"]["reflectance"] = "schlick";
+        check_same(lanes_and_alone(k, axis_bins(90, 5000)), false);
+    }
+}
