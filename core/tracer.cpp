@@ -232,10 +232,8 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
     // In order, as nearest(): a hit replaces the best one only when strictly nearer.
     for (size_t k = 0; k < order_.size(); ++k) {
         const Sphere& s = std::get<Sphere>(order_[k]->shape);
-        LaneMask ask = active;
-        if (k == from_k) ask = ask && !((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));  // intersect_from
-        if (!ask.any()) continue;
-        const LaneSphereHits h = refract::intersect_lanes(s, origin, dir, ask, t_min, best);
+        // The sphere the rays leave: none for those moving away from its centre (intersect_from).
+        const LaneSphereHits h = refract::intersect_lanes(s, origin, dir, active, t_min, best, k == from_k);
         if (!h.hit.any()) continue;
         if (out.hit.any()) {
             best = select(h.hit, h.t, best);

@@ -28,16 +28,22 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
 }
 
 __attribute__((flatten)) LaneSphereHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir,
-                                                        const LaneMask& active, double t_min, const Lanes& t_max) {
+                                                        const LaneMask& active, double t_min, const Lanes& t_max,
+                                                        bool leaving) {
     const LaneVec3 centre = LaneVec3::broadcast(s.center);
     const auto [b, disc] = sphere_quadratic<LaneVec3>(origin - centre, dir, Lanes(s.radius));
+    LaneSphereHits h;
+    const LaneMask ask = leaving ? active && !(b > Lanes(0.0)) : active;
+    if (!ask.any()) {
+        h.hit = ask;
+        return h;
+    }
     const Lanes sq = sqrt(disc);  // NaN where disc < 0: no hit there
     const Lanes near = -b - sq, far = -b + sq;
     const Lanes lo(t_min);
     // As the scalar test: the nearer root if it lies in (t_min, t_max), else the farther.
     const LaneMask near_ok = (near > lo) && (near < t_max), far_ok = (far > lo) && (far < t_max);
-    LaneSphereHits h;
-    h.hit = active && !(disc < Lanes(0.0)) && (near_ok || far_ok);
+    h.hit = ask && !(disc < Lanes(0.0)) && (near_ok || far_ok);
     h.t = select(near_ok, near, far);
     h.point = origin + h.t * dir;
     h.normal = ((h.point - centre) / Lanes(s.radius)).normalized();
