@@ -131,9 +131,15 @@ struct FarFieldEnds {
     static double amount(const Entry& e) { return e.weight.mean(); }
     size_t slot(const Entry& e) const { return static_cast<size_t>(e.band) - w0; }
     std::int64_t* bins_of(const Entry& e) { return tally.bins.data() + slot(e) * per_wavelength; }
-    void deposit(const TreeEntryT<NaturalLight>& e, int cls, int b) {
-        bins_of(e)[static_cast<size_t>(cls * bins + b)] += fixed(amount(e) * scale);
+    // Natural light of `a` (the emitted power's units) leaving at wavelength slot w in
+    // class cls and bin b, or unscattered (depth 0).
+    void natural(size_t w, int depth, int cls, int b, double a) {
+        if (depth == 0)
+            tally.unscattered[w] += fixed(a * scale);
+        else
+            tally.bins[w * per_wavelength + static_cast<size_t>(cls * bins + b)] += fixed(a * scale);
     }
+    void deposit(const TreeEntryT<NaturalLight>& e, int cls, int b) { natural(slot(e), e.depth, cls, b, amount(e)); }
     void deposit(const TreeEntryT<LightStokes>& e, int cls, int b) {
         const Vec3& d = e.ray.dir;
         const polar::Stokes S = polar::rotator(polar::frame_angle(e.pol.x, geo.stokes_x(d), d)) * e.pol.S;
@@ -160,12 +166,7 @@ struct FarFieldEnds {
         for (int l = 0; l < kLanes; ++l) {
             if (!m[l]) continue;
             const size_t w = static_cast<size_t>(p.band[static_cast<size_t>(l)]) - w0;
-            const double a = mean[l];
-            if (p.depth == 0)
-                tally.unscattered[w] += fixed(a * scale);
-            else
-                tally.bins[w * per_wavelength + static_cast<size_t>(cls * bins + geo.bin_of(p.dir.lane(l)))] +=
-                    fixed(a * scale);
+            natural(w, p.depth, cls, p.depth == 0 ? 0 : geo.bin_of(p.dir.lane(l)), mean[l]);
         }
     }
     void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed[slot(e)] += fixed(amount(e) * scale); }

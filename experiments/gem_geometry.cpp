@@ -232,11 +232,8 @@ void write(const Result& r, const std::string& dir) {
     // Line drawings.
     for (const auto& pr : r.presets)
         write_text_atomic(dir + "/gem_outline_" + pr.preset + ".csv", outline_text(pr.gem));
-    FigureSize size;
-    size.width_px = 1200;
-    size.height_px = 420 * static_cast<int>(presets.size()) + 40;
-    size.width_in = 9.0;
-    size.height_in = 3.1 * static_cast<double>(presets.size()) + 0.3;
+    const FigureSize size{1200, 420 * static_cast<int>(presets.size()) + 40, 9.0,
+                          3.1 * static_cast<double>(presets.size()) + 0.3};
     gnuplot_figure(dir, "gem_drawings", drawings_body(presets), size);
     summary << "## Line drawings\n\n`gem_drawings.png` / `.pdf`: per preset the crown from above, the pavilion "
             << "from below (mirrored, as seen) and the side profile; facet outlines in `gem_outline_PRESET.csv` "

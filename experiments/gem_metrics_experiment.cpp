@@ -257,11 +257,7 @@ void write(const Result& r, const std::string& dir) {
         ps << "set title '" << kMetrics[k].name << "' noenhanced\nplot 'gem_pavilion_scan.csv' skip 1 using 1:" << 2 + 2 * k << ":"
            << 3 + 2 * k << " with yerrorlines lc rgb 'black' pt 7 ps 0.5\n";
     ps << "unset multiplot\n";
-    FigureSize big;
-    big.width_px = 1000;
-    big.height_px = 760;
-    big.width_in = 8;
-    big.height_in = 6;
+    const FigureSize big{1000, 760, 8.0, 6.0};
     gnuplot_figure(dir, "gem_pavilion_scan", ps.str(), big);
     s << "\n## Pavilion angle\n\nGIA's default proportions with the pavilion angle varied (`gem_pavilion_scan.csv`, "
       << "`gem_pavilion_scan.png`; exact polarisation, " << r.options.rays << " rays):\n\n"

@@ -219,11 +219,7 @@ void image_grid_figure(const std::string& dir, const std::string& name, int rows
         b << "set title \"" << p.caption << "\" offset 0,-0.6\n"
           << "plot '" << p.file << "' binary filetype=png with rgbimage\n";
     b << "unset multiplot\n";
-    FigureSize size;
-    size.width_px = static_cast<int>(w);
-    size.height_px = static_cast<int>(h);
-    size.width_in = w / 130.0;
-    size.height_in = h / 130.0;
+    const FigureSize size{static_cast<int>(w), static_cast<int>(h), w / 130.0, h / 130.0};
     gnuplot_figure(dir, name, b.str(), size);
 }
 

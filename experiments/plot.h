@@ -30,7 +30,7 @@ void write_csv(const std::string& path, const Csv& table);
 // Reads a CSV written by write_csv (tests, the reproduce index); throws on a bad file.
 Csv read_csv(const std::string& path);
 
-struct FigureSize {
+struct FigureSize {  // FigureSize{width_px, height_px, width_in, height_in}
     int width_px = 800, height_px = 560;  // PNG
     double width_in = 6.0, height_in = 4.2;  // PDF
 };

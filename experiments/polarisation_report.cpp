@@ -144,11 +144,7 @@ void write(const Result& r, const std::string& dir) {
             g << "\nunset arrow 1\nunset label 1\n";
         }
         g << "unset multiplot\n";
-        FigureSize size;
-        size.width_px = 1200;
-        size.height_px = 520;
-        size.width_in = 10;
-        size.height_in = 4.3;
+        const FigureSize size{1200, 520, 10.0, 4.3};
         gnuplot_figure(dir, "sphere_dop", g.str(), size);
         md << "![sphere DoP](sphere_dop.png)\n\n";
     }

@@ -11,18 +11,14 @@
 
 #include "geometry/atomic_file.h"
 #include "geometry/error.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace refract;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("refract-atomic-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path fresh_dir(const std::string& name) { return refract::test::fresh_dir("atomic", name); }
 
 int temporaries(const fs::path& d) {
     int n = 0;

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -28,13 +29,7 @@ Run run(const std::string& args, const fs::path& dir, const std::string& env = "
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
-// A fresh, empty directory for one test, named after it and this process.
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("refract-cli-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path fresh_dir(const std::string& name) { return refract::test::fresh_dir("cli", name); }
 
 int count_lines(const std::string& s) {
     int n = 0;

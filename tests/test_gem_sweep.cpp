@@ -19,6 +19,7 @@
 #include "experiments/gem_sweep_file.h"
 #include "experiments/plot.h"
 #include "geometry/error.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 namespace sw = refract::experiments::gem_sweep;
@@ -27,12 +28,7 @@ extern char** environ;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("refract-sweep-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path fresh_dir(const std::string& name) { return refract::test::fresh_dir("sweep", name); }
 
 std::string slurp(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
