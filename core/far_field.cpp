@@ -161,15 +161,18 @@ struct FarFieldEnds {
     }
     // The lanes of a packet leaving the scene (natural light): background() for each.
     void background_lanes(const LaneEntry& p, const LaneMask& m) {
-        const int cls = event_class(p.transmissions, p.reflections);
         const Lanes mean = (p.weight[0] + p.weight[1] + p.weight[2]) / Lanes(3.0);  // amount(): Vec3::mean()
         for (int l = 0; l < kLanes; ++l) {
             if (!m[l]) continue;
-            const size_t w = static_cast<size_t>(p.band[static_cast<size_t>(l)]) - w0;
+            const size_t i = static_cast<size_t>(l);
+            const int cls = event_class(p.transmissions[i], p.reflections[i]);
+            const size_t w = static_cast<size_t>(p.band[i]) - w0;
             natural(w, p.depth, cls, p.depth == 0 ? 0 : geo.bin_of(p.dir.lane(l)), mean[l]);
         }
     }
     void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed[slot(e)] += fixed(amount(e) * scale); }
+    // Every lane of a packet walk sums into the same tallies (fixed point: in any order).
+    FarFieldEnds& lane(int) { return *this; }
     bool intercept(RayTreeWalkerT<P>&, const Entry&, const SurfaceHit&, typename RayTreeWalkerT<P>::List&) { return false; }
     double band_ior(const Entry& e, const SurfaceHit& h) const {
         return ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
@@ -321,7 +324,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                             if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(pol, ray.dir);
                             const auto first = tracer.intersect(ray, st);  // the same at every wavelength
                             if constexpr (std::is_same_v<P, NaturalLight>) {
-                                if (first && settings.wavelength_lanes) {
+                                if (first && settings.wavelength_lanes && tracer.lanes_apply()) {
                                     const SceneTracer::LaneHits h = SceneTracer::lanes_of(*first);
                                     for (size_t w = w0; w < w0 + gw; w += kLanes) {
                                         LaneEntry pk;
@@ -331,6 +334,9 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                                         pk.bailout = Lanes(e.bailout);
                                         pk.travelled = Lanes(0.0);
                                         pk.facet.fill(-1);
+                                        pk.object.fill(-1);
+                                        pk.reflections.fill(0);
+                                        pk.transmissions.fill(0);
                                         for (int l = 0; l < kLanes; ++l) {
                                             pk.active[l] = w + static_cast<size_t>(l) < w0 + gw;
                                             pk.band[static_cast<size_t>(l)] = static_cast<std::int16_t>(pk.active[l] ? w + static_cast<size_t>(l) : w);
@@ -338,8 +344,11 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                                         LaneLosses lost;
                                         walker.arrive_lanes(pk, h, packets, ends, lost);
                                         walker.walk_lanes(packets, ends, lost);
-                                        for (int l = 0; l < kLanes; ++l)
-                                            if (pk.active[l]) drop(w + static_cast<size_t>(l), lost.depth[l], lost.limits[l], lost.threshold[l]);
+                                        for (int l = 0; l < kLanes; ++l) {
+                                            if (!pk.active[l]) continue;
+                                            walker.add_losses(lost, l);
+                                            drop(w + static_cast<size_t>(l), lost.depth[l], lost.limits[l], lost.threshold[l]);
+                                        }
                                     }
                                     continue;
                                 }

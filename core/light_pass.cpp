@@ -74,9 +74,18 @@ struct PhotonEnds {
         return e.band < 0 ? 0.0 : ctx.index[static_cast<size_t>(e.band)][static_cast<size_t>(h.object->material)];
     }
 
+    // A packet walk's lanes all deposit here (fixed point: in any order).
+    PhotonEnds& lane(int) { return *this; }
+
     bool intercept(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, typename RayTreeWalkerT<P>::List& list) {
         const size_t mi = static_cast<size_t>(h.object->material);
         if (e.band >= 0 || !ctx.dispersive[mi]) return false;
+        if constexpr (std::is_same_v<P, NaturalLight>) {
+            if (SceneTracer::wavelength_lanes() && w.tracer().lanes_apply()) {
+                split_in_packets(w, e, h, mi);
+                return true;
+            }
+        }
         // First transparent hit: one ray per band, each with the band's weight.
         for (const int k : ctx.split_bands[mi]) {
             const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[static_cast<size_t>(k)][mi], false,
@@ -85,6 +94,29 @@ struct PhotonEnds {
                 w.push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list, ctx.weights[static_cast<size_t>(k)], k);
         }
         return true;
+    }
+
+    // The same split with the bands walked kLanes at a time (RayTreeWalkerT::walk_lanes): the
+    // same deposits, whose sums do not depend on the order.
+    void split_in_packets(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, size_t mi) {
+        const std::vector<int>& bands = ctx.split_bands[mi];
+        FifoList<LaneEntry> packets;
+        for (size_t i0 = 0; i0 < bands.size(); i0 += kLanes) {
+            LaneEntry child[2];
+            LaneLosses lost;
+            for (int l = 0; l < kLanes && i0 + static_cast<size_t>(l) < bands.size(); ++l) {
+                const int k = bands[i0 + static_cast<size_t>(l)];
+                const size_t kb = static_cast<size_t>(k);
+                const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[kb][mi], false, e.wave,
+                                                           ctx.all_wavelengths[kb]);
+                for (int b = 0; b < in.branches && b < 2; ++b)
+                    w.push_lane(child[b], l, e, h, in.branch[static_cast<size_t>(b)],
+                                in.transmitted[static_cast<size_t>(b)], lost, ctx.weights[kb], k);
+            }
+            w.queue(child, packets, *this);
+            w.walk_lanes(packets, *this, lost);
+            for (int l = 0; l < kLanes; ++l) w.add_losses(lost, l);
+        }
     }
 };
 

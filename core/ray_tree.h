@@ -109,31 +109,47 @@ private:
     size_t head_ = 0;
 };
 
-// A packet of the walk (RayTreeWalkerT::walk_lanes): the same node of the trees of up to
-// kLanes rays that differ only in their band (the wavelengths of one photon), which follow
-// the same branches through the same surfaces. Per lane what a TreeEntry holds; shared the
-// counters and the object the rays leave. Natural light only. Lanes not in use keep a
-// valid band (the index of a band is looked up for every lane).
+// A packet of the walk (RayTreeWalkerT::walk_lanes): up to kLanes rays that differ in their
+// band (the wavelengths of one photon or of one split eye ray), each at the same place in
+// its own tree (the same generation, and the same branch of its parent's packet). Per lane
+// what a TreeEntry holds; shared the depth. Natural light only. Lanes not in use (`active`
+// false) carry anything.
 struct LaneEntry {
     LaneVec3 origin, dir;
     Lanes weight[3];  // per colour channel
     Lanes bailout, travelled;
-    LaneMask active;
-    std::array<std::int16_t, kLanes> band{};
-    std::array<std::int32_t, kLanes> facet{};  // the facet each ray leaves
-    std::int32_t object = -1;                  // the object they leave (−1: none)
-    std::int16_t depth = 0, reflections = 0, transmissions = 0;
+    LaneMask active = LaneMask::Constant(false);
+    std::array<std::int16_t, kLanes> band, reflections, transmissions;
+    std::array<std::int32_t, kLanes> object, facet;  // the hit each ray leaves (-1: none)
+    std::int16_t depth = 0;
 
     // Lane l as the walker's entry.
     TreeEntry lane(int l) const {
+        const size_t i = static_cast<size_t>(l);
         TreeEntry e{Ray{origin.lane(l), dir.lane(l)}, Vec3(weight[0][l], weight[1][l], weight[2][l]), bailout[l]};
         e.depth = depth;
-        e.reflections = reflections;
-        e.transmissions = transmissions;
-        e.band = band[static_cast<size_t>(l)];
+        e.reflections = reflections[i];
+        e.transmissions = transmissions[i];
+        e.band = band[i];
         e.travelled = travelled[l];
-        e.from = RayOrigin{object, facet[static_cast<size_t>(l)]};
+        e.from = RayOrigin{object[i], facet[i]};
         return e;
+    }
+    // Lane l takes entry e (at the packet's depth).
+    void set(int l, const TreeEntry& e) {
+        const size_t i = static_cast<size_t>(l);
+        origin.set(l, e.ray.origin);
+        dir.set(l, e.ray.dir);
+        for (int c = 0; c < 3; ++c) weight[c][l] = e.weight[c];
+        bailout[l] = e.bailout;
+        travelled[l] = e.travelled;
+        active[l] = true;
+        band[i] = e.band;
+        reflections[i] = e.reflections;
+        transmissions[i] = e.transmissions;
+        object[i] = e.from.object;
+        facet[i] = e.from.facet;
+        depth = e.depth;
     }
 };
 
@@ -234,21 +250,24 @@ public:
         return true;
     }
 
-    // ⑤–⑥ on packets (natural light): the rays of each packet are searched together, and
-    // where all of them meet the same isotropic dielectric (physical mode, Fresnel
-    // reflectance, no absorption) its node is computed on every lane at once and both
-    // branches go on as packets; a lane that meets anything else leaves the packet and its
-    // tree is walked alone by walk(). Each lane's tree is the one walk() walks for its ray,
-    // to the last bit. `lost` gathers what each lane's dropped branches carried. The ends
-    // must not intercept hits (intercept() false).
-    template <class Ends>
-    void walk_lanes(FifoList<LaneEntry>& list, Ends& ends, LaneLosses& lost) {
+    // ⑤–⑥ on packets (natural light): the rays of each packet are searched together
+    // (SceneTracer::intersect_lanes); where they meet the same isotropic dielectric (physical
+    // mode, Fresnel reflectance) its node is computed on all those lanes at once, from the
+    // same laws; every other lane's hit goes through its own interaction, leaf or node, one
+    // lane at a time. A lane's children go to the packet of their branch, so each lane meets
+    // its nodes and leaves in the order walk() meets them for its ray, and its tree, its
+    // light and its losses are walk()'s to the last bit. `ends.lane(l)` are lane l's ends
+    // (the same object for all when their sums do not depend on order), which must not
+    // intercept band rays; `lost` gathers what each lane's dropped branches carried, which
+    // the caller adds to the walker's sums (add_losses).
+    template <class LaneEnds>
+    void walk_lanes(FifoList<LaneEntry>& list, LaneEnds& ends, LaneLosses& lost) {
         static_assert(std::is_same_v<P, NaturalLight>, "lane walks carry natural light");
         std::uint64_t walked = 0;
         while (!list.empty()) {
             if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
                 tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
-            list.reserve_more(2);  // p's children: p stays in place until it is popped
+            list.reserve_more(3);  // p's children: p stays in place until it is popped
             const LaneEntry& p = list.front();
             const SceneTracer::LaneHits h = tracer_.intersect_lanes(p.origin, p.dir, p.active, p.object, p.facet, stats_);
             const LaneMask missed = p.active && !h.hit;
@@ -258,62 +277,131 @@ public:
         }
     }
 
-    // Packet p has met its surfaces at h (found by walk_lanes, or once for all lanes).
-    template <class Ends>
-    __attribute__((flatten)) void arrive_lanes(const LaneEntry& p, const SceneTracer::LaneHits& h, FifoList<LaneEntry>& list, Ends& ends,
+    // Packet p has met its surfaces at h (found by walk_lanes, or once for all lanes): as
+    // arrive() on every lane (Beer–Lambert over the segment inside, then the interaction).
+    template <class LaneEnds>
+    void arrive_lanes(const LaneEntry& p, const SceneTracer::LaneHits& h, FifoList<LaneEntry>& list, LaneEnds& ends,
                       LaneLosses& lost) {
         const LaneMask at = p.active && h.hit;
+        if (!at.any()) return;
+        if (!tracer_.absorbing()) return expand_lanes(p, at, h, list, ends, lost);
+        LaneEntry q = p;
+        for (int l = 0; l < kLanes; ++l) {
+            if (!at[l] || h.entering[l]) continue;
+            const TreeEntry e = p.lane(l);
+            if (const auto a = tracer_.absorption(tracer_.surface_hit(h, l), ends.lane(l).wavelength(e))) {
+                for (int c = 0; c < 3; ++c) q.weight[c][l] = e.weight[c] * (*a)[c];
+                q.bailout[l] = e.bailout * a->maxCoeff();
+            }
+        }
+        expand_lanes(q, at, h, list, ends, lost);
+    }
+
+    // ②③④ on the lanes `at` of packet p at their hits h: as expand() on every lane.
+    template <class LaneEnds>
+    __attribute__((flatten)) void expand_lanes(const LaneEntry& p, const LaneMask& at, const SceneTracer::LaneHits& h,
+                                               FifoList<LaneEntry>& list, LaneEnds& ends, LaneLosses& lost) {
+        // The lanes whose node is computed together: those at the first lane's isotropic
+        // Fresnel dielectric in the physical mode, with natural light.
+        const RenderSettings& settings = tracer_.settings();
+        const bool natural = settings.polarisation != PolarisationModel::Exact;
+        const bool pov = settings.compat == Compat::PovRay;
         int first = -1;
         for (int l = kLanes - 1; l >= 0; --l)
             if (at[l]) first = l;
-        if (first < 0) return;
-        const SurfaceHit h0 = tracer_.surface_hit(h, first);
-        const RenderSettings& settings = tracer_.settings();
-        const auto* d = h0.material->dielectric();
-        bool together = d && d->reflectance == ReflectanceModel::Fresnel && !tracer_.absorbing() &&
-                        settings.compat == Compat::Physical && settings.polarisation != PolarisationModel::Exact;
-        for (int l = 0; l < kLanes && together; ++l)
-            together = !at[l] || (h.object[static_cast<size_t>(l)] == h0.object && h.entering[l] == h0.entering);
-        if (!together) {  // lane by lane
-            for (int l = 0; l < kLanes; ++l)
-                if (at[l]) walk_alone(p.lane(l), tracer_.surface_hit(h, l), ends, lost, l);
-            return;
-        }
-        stats_.tree_nodes += static_cast<std::uint64_t>(at.count());
-        // The node of core/interaction.h dielectric_node on every lane, from the same laws.
-        // Each lane's index at its band (the ends' band_ior, a function of the band and the
-        // material), kept for the next node in the same material with the same bands.
-        if (h0.material != ior_material_ || p.band != ior_bands_) {
-            ior_material_ = h0.material;
-            ior_bands_ = p.band;
-            ior_ = Lanes(d->ior);
-            Entry probe = p.lane(first);
+        const Material* m0 = &tracer_.scene().materials[h.object[static_cast<size_t>(first)]->material];
+        const auto* d = m0->dielectric();
+        // POV-Ray mode: band rays (no split here) in an interior without fading.
+        const bool vector_node = natural && d && d->reflectance == ReflectanceModel::Fresnel && (!pov || !d->absorption);
+        LaneMask together = LaneMask::Constant(false);
+        bool all_together = vector_node;
+        if (vector_node) {
+            const Object* o0 = h.object[static_cast<size_t>(first)];
             for (int l = 0; l < kLanes; ++l) {
-                probe.band = p.band[static_cast<size_t>(l)];
-                const double b = ends.band_ior(probe, h0);
-                if (b > 0) ior_[l] = b;
+                const Object* o = h.object[static_cast<size_t>(l)];
+                together[l] = at[l] && (o == o0 || &tracer_.scene().materials[o->material] == m0);
             }
-            inverse_ior_ = Lanes(1.0) / ior_;
+            for (int l = 0; l < kLanes; ++l) all_together = all_together && together[l] == at[l];
         }
-        namespace gen = optics::generic;
-        const Lanes& eta = h0.entering ? ior_ : inverse_ior_;  // as dielectric interact(): ior or 1 / ior
-        const Lanes cos_i = gen::cos_incident(p.dir, h.normal);
-        const Lanes sin2_t = gen::sin2_transmitted(cos_i, eta);
-        const LaneMask tir = sin2_t >= Lanes(1.0);
-        const Lanes cos_t = gen::cos_of_sin2(sin2_t);  // NaN under total internal reflection
-        const Lanes R = select(tir, Lanes(1.0), gen::fresnel_terms(cos_i, cos_t, eta).R());
-        const LaneVec3 reflected = gen::reflect(p.dir, h.normal).normalized();
-        const LaneVec3 refracted = gen::refracted_direction(p.dir, h.normal, cos_i, cos_t, eta).normalized();
-        Lanes transmit_factor[3];
-        for (int c = 0; c < 3; ++c) transmit_factor[c] = (Lanes(1.0) - R) * Lanes(d->filter[c]);
-        Lanes transmit_bailout = transmit_factor[0];  // the largest component, as maxCoeff
-        for (int c = 1; c < 3; ++c)
-            transmit_bailout = select(transmit_factor[c] > transmit_bailout, transmit_factor[c], transmit_bailout);
-        const Lanes reflect_factor[3] = {R, R, R};
-        const std::int32_t object = tracer_.origin_of(h0).object;
-        push_lanes(p, h, object, at, reflected, reflect_factor, R, false, list, ends, lost);
-        push_lanes(p, h, object, at && !tir && (R < Lanes(1.0)), refracted, transmit_factor, transmit_bailout, true,
-                   list, ends, lost);
+        // Lane walks carry isotropic media only (two branches at most per node).
+        LaneEntry child[2];
+        child[0].depth = child[1].depth = static_cast<std::int16_t>(p.depth + 1);
+        if (together.any()) node_lanes(p, together, h, *m0, *d, child, ends, lost);
+        // Every other lane through its own interaction.
+        for (int l = 0; l < kLanes && !all_together; ++l) {
+            if (!at[l] || together[l]) continue;
+            const TreeEntry e = p.lane(l);
+            const SurfaceHit hl = tracer_.surface_hit(h, l);
+            auto& el = ends.lane(l);
+            const Interaction in = tracer_.interact(hl, e.ray, stats_, el.band_ior(e, hl), false, e.wave, el.wavelength(e));
+            if (in.leaf) {
+                el.leaf(e, hl);
+                continue;
+            }
+            for (int b = 0; b < in.branches && b < 2; ++b)
+                push_lane(child[b], l, e, hl, in.branch[static_cast<size_t>(b)], in.transmitted[static_cast<size_t>(b)], lost);
+        }
+        queue(child, list, ends);
+    }
+
+    // Lane l of packet `child` takes entry e's child along branch br (at hit h), unless
+    // push()'s rules drop it (its light then counted in lane l of `lost`); with push()'s
+    // tint and band. True when it was added.
+    __attribute__((noinline)) bool push_lane(LaneEntry& child, int l, const Entry& e, const SurfaceHit& h, const Branch& br, bool transmitted,
+                   LaneLosses& lost, const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
+        static const polar::Mueller none = polar::Mueller::Identity();  // natural light: not read
+        bool added = false;
+        as_lane(lost, l, [&] { added = push(e, h, br, none, transmitted, scratch_, tint, band); });
+        if (!added) return false;
+        child.set(l, scratch_.front());
+        scratch_.pop_front();
+        return true;
+    }
+
+    // The packets `child` (in this order) onto the list, the lanes known to leave the scene
+    // ended at once (as the walk would end them).
+    template <class LaneEnds>
+    void queue(LaneEntry (&child)[2], FifoList<LaneEntry>& list, LaneEnds& ends) {
+        for (LaneEntry& c : child) {
+            if (!c.active.any()) continue;
+            const LaneMask gone = tracer_.escaping_lanes(c.object, c.origin, c.dir, c.active, stats_);
+            if (gone.any()) {
+                background_lanes(c, gone, ends);
+                c.active = c.active && !gone;
+                if (!c.active.any()) continue;
+            }
+            list.push_back(c);
+        }
+    }
+
+    // Runs f with the walker's dropped-light sums started from zero, then added to what they
+    // were: one band's losses summed on their own, as add_losses() adds a lane's.
+    template <class F>
+    void own_losses(F&& f) {
+        const double d0 = stats_.lost_depth, l0 = stats_.lost_limits, t0 = stats_.lost_threshold;
+        stats_.lost_depth = stats_.lost_limits = stats_.lost_threshold = 0;
+        f();
+        stats_.lost_depth = d0 + stats_.lost_depth;
+        stats_.lost_limits = l0 + stats_.lost_limits;
+        stats_.lost_threshold = t0 + stats_.lost_threshold;
+    }
+
+    // Runs f with push()'s dropped light going to lane l of `lost` (a lane's own sums).
+    template <class F>
+    void as_lane(LaneLosses& lost, int l, F&& f) {
+        LaneLosses* const saved = lane_lost_;
+        const int saved_lane = lane_;
+        lane_lost_ = &lost;
+        lane_ = l;
+        f();
+        lane_lost_ = saved;
+        lane_ = saved_lane;
+    }
+    // Lane l's losses added to the walker's sums (a band's own sums, as walk()'s caller adds them).
+    void add_losses(const LaneLosses& lost, int l) {
+        stats_.lost_depth += lost.depth[l];
+        stats_.lost_limits += lost.limits[l];
+        stats_.lost_threshold += lost.threshold[l];
     }
 
 private:
@@ -328,80 +416,152 @@ private:
     }
     // Counts a dropped child; the sum its light is added to.
     double& count(Cut c) {
-        if (c == Cut::Threshold) {
-            ++stats_.pruned;
-            return stats_.lost_threshold;
+        if (c == Cut::Threshold) ++stats_.pruned;
+        else ++stats_.depth_limited;
+        if (lane_lost_) {  // as_lane
+            Lanes& sum = c == Cut::Threshold ? lane_lost_->threshold : c == Cut::Depth ? lane_lost_->depth : lane_lost_->limits;
+            return sum[lane_];
         }
-        ++stats_.depth_limited;
-        return c == Cut::Depth ? stats_.lost_depth : stats_.lost_limits;
+        return c == Cut::Threshold ? stats_.lost_threshold : c == Cut::Depth ? stats_.lost_depth : stats_.lost_limits;
     }
 
-    // Lane l of a lane walk on its own: its tree by walk(), its losses into lane l.
-    template <class Ends>
-    void walk_alone(const Entry& e, const SurfaceHit& h, Ends& ends, LaneLosses& lost, int l) {
-        const double d0 = stats_.lost_depth, l0 = stats_.lost_limits, t0 = stats_.lost_threshold;
-        stats_.lost_depth = stats_.lost_limits = stats_.lost_threshold = 0;
-        List alone;
-        arrive(e, h, alone, ends);
-        walk(alone, ends);
-        lost.depth[l] += stats_.lost_depth;
-        lost.limits[l] += stats_.lost_limits;
-        lost.threshold[l] += stats_.lost_threshold;
-        stats_.lost_depth += d0;
-        stats_.lost_limits += l0;
-        stats_.lost_threshold += t0;
+    // The node of core/interaction.h dielectric_node on the lanes `m` of packet p, all at
+    // dielectric d (material `mat`), from the same laws: both children into child[0]
+    // (reflected) and child[1] (refracted), under push()'s rules.
+    template <class LaneEnds>
+    __attribute__((flatten)) void node_lanes(const LaneEntry& p, const LaneMask& m, const SceneTracer::LaneHits& h, const Material& mat,
+                    const material::Dielectric& d, LaneEntry (&child)[2], LaneEnds& ends, LaneLosses& lost) {
+        stats_.tree_nodes += static_cast<std::uint64_t>(m.count());
+        int first = -1;
+        for (int l = kLanes - 1; l >= 0; --l)
+            if (m[l]) first = l;
+        // Each lane's index at its band (the ends' band_ior, a function of the band and the
+        // material), kept for the next node in the same material with the same bands.
+        std::array<std::int16_t, kLanes> bands;
+        for (int l = 0; l < kLanes; ++l) bands[static_cast<size_t>(l)] = m[l] ? p.band[static_cast<size_t>(l)] : -2;
+        const bool pov = tracer_.settings().compat == Compat::PovRay;
+        // POV-Ray stores an interior's ior in single precision (as dielectric interact()).
+        const double nominal = pov ? static_cast<double>(static_cast<float>(d.ior)) : d.ior;
+        if (&mat != ior_material_ || bands != ior_bands_) {
+            ior_material_ = &mat;
+            ior_bands_ = bands;
+            ior_ = Lanes(nominal);
+            const SurfaceHit h0 = tracer_.surface_hit(h, first);
+            for (int l = 0; l < kLanes; ++l) {
+                if (!m[l]) continue;
+                const double b = ends.lane(l).band_ior(p.lane(l), h0);
+                if (b > 0) ior_[l] = b;
+            }
+            inverse_ior_ = Lanes(1.0) / ior_;
+        }
+        namespace gen = optics::generic;
+        const Lanes eta = select(h.entering, ior_, inverse_ior_);  // as dielectric interact(): ior or 1 / ior
+        const Lanes cos_i = gen::cos_incident(p.dir, h.normal);
+        if (pov) return node_lanes_pov(p, m, h, d, child, nominal, eta, cos_i, lost);
+        const Lanes sin2_t = gen::sin2_transmitted(cos_i, eta);
+        const LaneMask tir = sin2_t >= Lanes(1.0);
+        const Lanes cos_t = gen::cos_of_sin2(sin2_t);  // NaN under total internal reflection
+        const Lanes R = select(tir, Lanes(1.0), gen::fresnel_terms(cos_i, cos_t, eta).R());
+        Lanes transmit[3];
+        for (int c = 0; c < 3; ++c) transmit[c] = (Lanes(1.0) - R) * Lanes(d.filter[c]);
+        Lanes transmit_bailout = transmit[0];  // the largest component, as maxCoeff
+        for (int c = 1; c < 3; ++c) transmit_bailout = select(transmit[c] > transmit_bailout, transmit[c], transmit_bailout);
+        const LaneMask refracts = m && !tir && (R < Lanes(1.0));
+        fill_child(child[0], p, h, m, gen::reflect(p.dir, h.normal).normalized(), {R, R, R}, R, false, lost);
+        if (refracts.any())
+            fill_child(child[1], p, h, refracts,
+                       gen::refracted_direction(p.dir, h.normal, cos_i, cos_t, eta).normalized(), transmit,
+                       transmit_bailout, true, lost);
     }
 
-    // ⑥ on packets: the children of packet p along one branch (direction `dir`, colour
-    // factors f, threshold factor bf) in the lanes of `mask`, unless push()'s rules drop them.
-    template <class Ends>
-    void push_lanes(const LaneEntry& p, const SceneTracer::LaneHits& h, std::int32_t object, const LaneMask& mask,
-                    const LaneVec3& dir, const Lanes (&f)[3], const Lanes& bf, bool transmitted,
-                    FifoList<LaneEntry>& list, Ends& ends, LaneLosses& lost) {
-        if (!mask.any()) return;
-        LaneEntry c;
-        c.bailout = p.bailout * bf;
-        for (int k = 0; k < 3; ++k) c.weight[k] = p.weight[k] * f[k];
-        c.active = mask;
-        const int refl = p.reflections + (transmitted ? 0 : 1), trans = p.transmissions + (transmitted ? 1 : 0);
+    // POV-Ray mode's dielectric node (core/interaction.cpp dielectric_pov) for band rays in
+    // an interior without fading, on the lanes `m`: Fresnel with the nominal index, the
+    // refraction and its total internal reflection with each band's (eta), a refraction
+    // spawned only when its filter's greyscale exceeds adc_bailout, and turned into a mirror
+    // ray where the band meets total internal reflection.
+    void node_lanes_pov(const LaneEntry& p, const LaneMask& m, const SceneTracer::LaneHits& h,
+                        const material::Dielectric& d, LaneEntry (&child)[2], double nominal, const Lanes& eta,
+                        const Lanes& cos_i, LaneLosses& lost) {
+        namespace gen = optics::generic;
+        const Lanes eta_nominal = select(h.entering, Lanes(nominal), Lanes(1.0 / nominal));
+        const Lanes sin2_n = gen::sin2_transmitted(cos_i, eta_nominal);
+        const Lanes R = select(sin2_n >= Lanes(1.0), Lanes(1.0),
+                               gen::fresnel_terms(cos_i, gen::cos_of_sin2(sin2_n), eta_nominal).R());
+        const Lanes sin2_t = gen::sin2_transmitted(cos_i, eta);
+        const LaneMask tir = sin2_t >= Lanes(1.0);
+        Lanes filter[3];
+        for (int c = 0; c < 3; ++c) filter[c] = (Lanes(1.0) - R) * Lanes(d.filter[c]);
+        // fmin(1, |filter · greyscale|) and filter.cwiseAbs().maxCoeff()
+        const Vec3& g = SceneTracer::kPovGreyscale;
+        Lanes grey = filter[0] * Lanes(g[0]) + filter[1] * Lanes(g[1]) + filter[2] * Lanes(g[2]);
+        Lanes largest;
         for (int l = 0; l < kLanes; ++l) {
-            if (!mask[l]) continue;
-            const Cut why = cut(p.depth, refl, trans, c.bailout[l]);
-            if (why == Cut::Kept) continue;
-            c.active[l] = false;
-            const Vec3 w(c.weight[0][l], c.weight[1][l], c.weight[2][l]);
-            const double amount = band_weighted_mean(w, p.band[static_cast<size_t>(l)]);
-            count(why) += amount;
-            (why == Cut::Threshold ? lost.threshold : why == Cut::Depth ? lost.depth : lost.limits)[l] += amount;
+            grey[l] = std::fmin(1.0, std::abs(grey[l]));
+            const double a = std::abs(filter[0][l]), b = std::abs(filter[1][l]), c = std::abs(filter[2][l]);
+            largest[l] = std::max(std::max(a, b), c);
         }
-        if (!c.active.any()) return;
+        const LaneMask spawn = grey > Lanes(settings_adc());
+        const LaneMask mirror = m && spawn && tir;  // the refracted ray turned into total internal reflection
+        const LaneMask normal = m && !mirror;
+        const LaneVec3 reflected = gen::reflect(p.dir, h.normal).normalized();
+        const Lanes one(1.0);
+        const Lanes mirror_factor[3] = {one, one, one};
+        const Lanes reflect_factor[3] = {R, R, R};
+        Lanes f[3];
+        for (int c = 0; c < 3; ++c) f[c] = select(mirror, mirror_factor[c], reflect_factor[c]);
+        fill_child(child[0], p, h, m, reflected, f, select(mirror, largest, R), false, lost);
+        const LaneMask refracts = normal && spawn;
+        if (refracts.any())
+            fill_child(child[1], p, h, refracts,
+                       gen::refracted_direction(p.dir, h.normal, cos_i, gen::cos_of_sin2(sin2_t), eta).normalized(),
+                       filter, largest, true, lost);
+    }
+    double settings_adc() const { return tracer_.settings().pruning_threshold(); }
+
+    // The lanes `m` of a fresh child c (no lane set yet): leaving hit h of packet p along
+    // `dir`, with colour factors f and threshold factor bf (push()'s attenuation), unless
+    // push()'s rules drop them (their light then counted in `lost`). Its other lanes get
+    // values they will not use.
+    void fill_child(LaneEntry& c, const LaneEntry& p, const SceneTracer::LaneHits& h, const LaneMask& m,
+                    const LaneVec3& dir, const Lanes (&f)[3], const Lanes& bf, bool transmitted, LaneLosses& lost) {
+        const Lanes bailout = p.bailout * bf;
+        const std::int16_t dr = transmitted ? 0 : 1, dt = transmitted ? 1 : 0;
+        for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i) {
+            c.reflections[i] = static_cast<std::int16_t>(p.reflections[i] + dr);
+            c.transmissions[i] = static_cast<std::int16_t>(p.transmissions[i] + dt);
+        }
+        LaneMask keep = m;
+        for (int l = 0; l < kLanes; ++l) {
+            if (!m[l]) continue;
+            const size_t i = static_cast<size_t>(l);
+            const Cut why = cut(p.depth, c.reflections[i], c.transmissions[i], bailout[l]);
+            if (why == Cut::Kept) continue;
+            keep[l] = false;
+            const Vec3 w(p.weight[0][l] * f[0][l], p.weight[1][l] * f[1][l], p.weight[2][l] * f[2][l]);
+            as_lane(lost, l, [&] { count(why) += band_weighted_mean(w, p.band[i]); });
+        }
+        if (!keep.any()) return;
         c.origin = h.point;
         c.dir = dir;
+        for (int k = 0; k < 3; ++k) c.weight[k] = p.weight[k] * f[k];
+        c.bailout = bailout;
         c.travelled = p.travelled + h.t;
+        c.active = keep;
         c.band = p.band;
         c.facet = h.facet;
-        c.object = object;
-        c.depth = static_cast<std::int16_t>(p.depth + 1);
-        c.reflections = static_cast<std::int16_t>(refl);
-        c.transmissions = static_cast<std::int16_t>(trans);
-        // Children known to leave the scene end here, as the walk would end them.
-        const LaneMask gone = tracer_.escaping_lanes(object, c.origin, c.dir, c.active, stats_);
-        if (gone.any()) {
-            background_lanes(c, gone, ends);
-            c.active = c.active && !gone;
-            if (!c.active.any()) return;
-        }
-        list.push_back(c);
+        const Object* objects = tracer_.scene().objects.data();
+        for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i)
+            c.object[i] = keep[static_cast<int>(i)] ? static_cast<std::int32_t>(h.object[i] - objects) : -1;
     }
 
     // The lanes m of packet p left the scene.
-    template <class Ends>
-    static void background_lanes(const LaneEntry& p, const LaneMask& m, Ends& ends) {
-        if constexpr (BackgroundLanes<Ends>::value) {
+    template <class LaneEnds>
+    static void background_lanes(const LaneEntry& p, const LaneMask& m, LaneEnds& ends) {
+        if constexpr (BackgroundLanes<LaneEnds>::value) {
             ends.background_lanes(p, m);
         } else {
             for (int l = 0; l < kLanes; ++l)
-                if (m[l]) ends.background(p.lane(l));
+                if (m[l]) ends.lane(l).background(p.lane(l));
         }
     }
 
@@ -434,6 +594,10 @@ private:
     const Material* ior_material_ = nullptr;
     std::array<std::int16_t, kLanes> ior_bands_{};
     Lanes ior_{0.0}, inverse_ior_{0.0};
+    // as_lane: where push() counts dropped light instead of the stats.
+    LaneLosses* lane_lost_ = nullptr;
+    int lane_ = 0;
+    List scratch_;  // a lane's children on their way into packets
 };
 using RayTreeWalker = RayTreeWalkerT<NaturalLight>;
 

@@ -19,8 +19,11 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
         for (const Object& obj : scene.objects)
             if (!pov || scene.materials[obj.material].is<material::Dielectric>() == (pass == 1))
                 order_.push_back(&obj);
-    for (const Material& m : scene.materials)
+    for (const Material& m : scene.materials) {
         absorbing_ = absorbing_ || (!pov && m.dielectric() && m.dielectric()->absorption);
+        lanes_apply_ = lanes_apply_ && !m.is<material::Uniaxial>();
+    }
+    lanes_apply_ = lanes_apply_ && scene.settings.polarisation != PolarisationModel::Exact;
     mesh_accel_.resize(order_.size());
     for (size_t k = 0; k < order_.size(); ++k)
         if (const auto* m = std::get_if<TriangleMesh>(&order_[k]->shape); m && m->triangles.size() >= MeshAccel::kMinTriangles)
@@ -37,7 +40,6 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
         facet_base_[k] = static_cast<std::int32_t>(facet_ids_);
         facet_ids_ += c->planes.size();
     }
-    for (const Object* o : order_) spheres_only_ = spheres_only_ && std::holds_alternative<Sphere>(o->shape);
     static std::atomic<std::uint64_t> tracers{0};
     id_ = ++tracers;
     if (order_.size() >= kBvhMinObjects) {
@@ -64,6 +66,7 @@ std::optional<Hit> SceneTracer::intersect_object(size_t k, const Ray& ray, doubl
 namespace {
 
 std::atomic<bool> facet_local_on{true};
+std::atomic<bool> wavelength_lanes_on{true};
 
 // The guesses of one thread for one tracer: per starting facet, the last few directions
 // that left it (in single precision: they only choose a guess) and the facet each left
@@ -117,6 +120,8 @@ thread_local GuessCache guess_cache;
 
 void SceneTracer::set_facet_local(bool on) { facet_local_on.store(on, std::memory_order_relaxed); }
 bool SceneTracer::facet_local() { return facet_local_on.load(std::memory_order_relaxed); }
+void SceneTracer::set_wavelength_lanes(bool on) { wavelength_lanes_on.store(on, std::memory_order_relaxed); }
+bool SceneTracer::wavelength_lanes() { return wavelength_lanes_on.load(std::memory_order_relaxed); }
 
 std::optional<Hit> SceneTracer::intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
                                                RenderStats& stats) const {
@@ -198,28 +203,34 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
     return best;
 }
 
+namespace {
+// The fewest lanes leaving one facet that are tested as a packet (fewer: one by one, which
+// costs less than a packet test of mostly empty lanes).
+constexpr int kMinPacketLanes = 3;
+}  // namespace
+
 SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
-                                                   std::int32_t from_object,
-                                                   const std::array<std::int32_t, kLanes>& from_facet,
+                                                   const LaneIds& from_object, const LaneIds& from_facet,
                                                    RenderStats& stats) const {
     LaneHits out;
     out.hit = LaneMask::Constant(false);
     out.entering = LaneMask::Constant(false);
     out.facet.fill(-1);
-    if (bvh_ || !spheres_only_) {  // lane by lane
+    if (bvh_) {  // lane by lane
         out.t = Lanes(0.0);
         out.point = out.normal = LaneVec3::broadcast(Vec3::Zero());
         for (int l = 0; l < kLanes; ++l) {
             if (!active[l]) continue;
-            const auto h = intersect(Ray{origin.lane(l), dir.lane(l)}, stats, RayOrigin{from_object, from_facet[static_cast<size_t>(l)]});
+            const size_t i = static_cast<size_t>(l);
+            const auto h = intersect(Ray{origin.lane(l), dir.lane(l)}, stats, RayOrigin{from_object[i], from_facet[i]});
             if (!h) continue;
             out.hit[l] = true;
             out.t[l] = h->hit.t;
             out.point.set(l, h->hit.point);
             out.normal.set(l, h->normal);
             out.entering[l] = h->entering;
-            out.object[static_cast<size_t>(l)] = h->object;
-            out.facet[static_cast<size_t>(l)] = h->hit.facet;
+            out.object[i] = h->object;
+            out.facet[i] = h->hit.facet;
         }
         return out;
     }
@@ -227,27 +238,140 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
     const bool pov = scene_.settings.compat == Compat::PovRay;
     const double t_min = pov ? kPovMinDepth : kEpsilon;
     Lanes best(pov ? kPovMaxDistance : std::numeric_limits<double>::infinity());
-    const size_t from_k = from_object >= 0 ? order_of_[static_cast<size_t>(from_object)] : SIZE_MAX;
+    std::array<size_t, kLanes> from_k;
+    for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i)
+        from_k[i] = active[static_cast<int>(i)] && from_object[i] >= 0 ? order_of_[static_cast<size_t>(from_object[i])]
+                                                                       : SIZE_MAX;
     LaneVec3 outward;
-    // In order, as nearest(): a hit replaces the best one only when strictly nearer.
-    for (size_t k = 0; k < order_.size(); ++k) {
-        const Sphere& s = std::get<Sphere>(order_[k]->shape);
-        // The sphere the rays leave: none for those moving away from its centre (intersect_from).
-        const LaneSphereHits h = refract::intersect_lanes(s, origin, dir, active, t_min, best, k == from_k);
-        if (!h.hit.any()) continue;
+    // A hit of object k in the lanes of `m` (t, point, outward normal; facet -1).
+    const auto take = [&](size_t k, const LaneMask& m, const LaneShapeHits& h) {
+        if (!m.any()) return;
+        best = select(m, h.t, best);
         if (out.hit.any()) {
-            best = select(h.hit, h.t, best);
-            out.point = select(h.hit, h.point, out.point);
-            outward = select(h.hit, h.normal, outward);
-            out.hit = out.hit || h.hit;
+            out.point = select(m, h.point, out.point);
+            outward = select(m, h.normal, outward);
         } else {  // the first object hit (the lanes that missed it keep t_max)
-            best = select(h.hit, h.t, best);
             out.point = h.point;
             outward = h.normal;
-            out.hit = h.hit;
+        }
+        out.hit = out.hit || m;
+        for (int l = 0; l < kLanes; ++l)
+            if (m[l]) {
+                out.object[static_cast<size_t>(l)] = order_[k];
+                out.facet[static_cast<size_t>(l)] = -1;
+            }
+    };
+    // Object k asked for lane l alone, as nearest() asks it.
+    const auto one = [&](size_t k, int l) {
+        const size_t i = static_cast<size_t>(l);
+        const Ray r{origin.lane(l), dir.lane(l)};
+        const auto h = from_k[i] == k ? intersect_from(k, from_facet[i], r, t_min, best[l], stats)
+                                      : intersect_object(k, r, t_min, best[l]);
+        if (!h) return;
+        best[l] = h->t;
+        out.point.set(l, h->point);
+        outward.set(l, h->normal);
+        out.hit[l] = true;
+        out.object[i] = order_[k];
+        out.facet[i] = h->facet;
+    };
+    // In order, as nearest(): a hit replaces the best one only when strictly nearer.
+    for (size_t k = 0; k < order_.size(); ++k) {
+        LaneMask leaving;
+        for (int l = 0; l < kLanes; ++l) leaving[l] = active[l] && from_k[static_cast<size_t>(l)] == k;
+        const Shape& shape = order_[k]->shape;
+        if (const auto* s = std::get_if<Sphere>(&shape)) {
+            // The sphere the rays leave: none for those moving away from its centre (intersect_from).
+            const LaneShapeHits h = refract::intersect_lanes(*s, origin, dir, active, t_min, best, leaving);
+            take(k, h.hit, h);
+            continue;
+        }
+        if (const auto* p = std::get_if<Plane>(&shape)) {
+            const LaneShapeHits h = refract::intersect_lanes(*p, origin, dir, active, t_min, best);
+            take(k, h.hit, h);
+            continue;
+        }
+        LaneMask rest = active;
+        const FacetGraph* graph = facet_graph_[k].get();
+        LaneMask todo = LaneMask::Constant(false);
+        if (graph && facet_local())
+            for (int l = 0; l < kLanes; ++l) todo[l] = leaving[l] && from_facet[static_cast<size_t>(l)] >= 0;
+        if (todo.any()) {
+            // The lanes leaving a facet f of this plane set: decided together from the planes
+            // around f and their guesses (intersect_from on every lane), facet by facet.
+            const auto& c = std::get<ConvexPolyhedron>(shape);
+            GuessCache& cache = guess_cache;
+            if (cache.owner != id_) cache.reset(id_, facet_ids_);
+            while (todo.any()) {
+                int first = -1;
+                for (int l = kLanes - 1; l >= 0; --l)
+                    if (todo[l]) first = l;
+                const int f = from_facet[static_cast<size_t>(first)];
+                const size_t id = static_cast<size_t>(facet_base_[k] + f);
+                LaneMask local;
+                for (int l = 0; l < kLanes; ++l) local[l] = todo[l] && from_facet[static_cast<size_t>(l)] == f;
+                todo = todo && !local;
+                if (local.count() < kMinPacketLanes) continue;  // cheaper one by one (below)
+                rest = rest && !local;
+                // Lane l by the full plane loop, its leaving facet remembered (intersect_from
+                // when its guess fails).
+                const auto full = [&](int l) {
+                    ++stats.facet_full;
+                    const size_t i = static_cast<size_t>(l);
+                    const Ray r{origin.lane(l), dir.lane(l)};
+                    const auto hit = intersect_object(k, r, t_min, best[l]);
+                    if (!hit) return;
+                    cache.store(id, r.dir, hit->facet, 0, false);
+                    best[l] = hit->t;
+                    out.point.set(l, hit->point);
+                    outward.set(l, hit->normal);
+                    out.hit[l] = true;
+                    out.object[i] = order_[k];
+                    out.facet[i] = hit->facet;
+                };
+                // A direction never seen from this facet: the first lane fills the cache.
+                if (cache.guess(id, dir.lane(first)).first < 0) {
+                    full(first);
+                    local[first] = false;
+                }
+                // Until every lane is decided: the packet test, then the first undecided lane
+                // by the full loop, whose facet is the others' next guess; the last few lanes
+                // one by one.
+                while (local.count() >= kMinPacketLanes) {
+                    LaneIds guess;
+                    std::array<int, kLanes> slot{};
+                    for (int l = 0; l < kLanes; ++l) {
+                        const auto [g, sl] = local[l] ? cache.guess(id, dir.lane(l)) : std::pair<int, int>{-1, -1};
+                        guess[static_cast<size_t>(l)] = g;
+                        slot[static_cast<size_t>(l)] = sl;
+                    }
+                    const FacetGraph::LocalLanes loc = graph->intersect_lanes(c, origin, dir, local, t_min, best, f, guess);
+                    const LaneMask decided = local && loc.decided;
+                    stats.facet_local += static_cast<std::uint64_t>(decided.count());
+                    for (int l = 0; l < kLanes; ++l) {
+                        if (!decided[l] || !loc.hit[l]) continue;
+                        const size_t i = static_cast<size_t>(l);
+                        cache.store(id, dir.lane(l), loc.facet[i], slot[i], true);
+                        best[l] = loc.t[l];
+                        out.point.set(l, loc.point.lane(l));
+                        outward.set(l, c.planes[static_cast<size_t>(loc.facet[i])].normal);
+                        out.hit[l] = true;
+                        out.object[i] = order_[k];
+                        out.facet[i] = loc.facet[i];
+                    }
+                    local = local && !decided;
+                    int u = -1;
+                    for (int l = kLanes - 1; l >= 0; --l)
+                        if (local[l]) u = l;
+                    if (u < 0) break;
+                    full(u);
+                    local[u] = false;
+                }
+                rest = rest || local;
+            }
         }
         for (int l = 0; l < kLanes; ++l)
-            if (h.hit[l]) out.object[static_cast<size_t>(l)] = order_[k];
+            if (rest[l]) one(k, l);
     }
     out.t = best;
     if (!out.hit.any()) return out;
@@ -258,11 +382,13 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
     return out;
 }
 
-LaneMask SceneTracer::escaping_lanes(std::int32_t object, const LaneVec3& origin, const LaneVec3& dir,
+LaneMask SceneTracer::escaping_lanes(const LaneIds& object, const LaneVec3& origin, const LaneVec3& dir,
                                      const LaneMask& active, RenderStats& stats) const {
-    if (order_.size() != 1 || !spheres_only_ || object < 0) return LaneMask::Constant(false);
+    if (order_.size() != 1 || !std::holds_alternative<Sphere>(order_[0]->shape)) return LaneMask::Constant(false);
     const Sphere& s = std::get<Sphere>(order_[0]->shape);
-    const LaneMask gone = active && ((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));
+    LaneMask from = active;
+    for (int l = 0; l < kLanes; ++l) from[l] = from[l] && object[static_cast<size_t>(l)] >= 0;
+    const LaneMask gone = from && ((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));
     stats.segments += static_cast<std::uint64_t>(gone.count());
     return gone;
 }

@@ -37,10 +37,12 @@ public:
     // the last bit. Guesses are remembered per thread, per starting facet and direction:
     // the 31 rays of a spectral split cross mostly the same facets, one after another.
     std::optional<SurfaceHit> intersect(const Ray& ray, RenderStats& stats, RayOrigin from = {}) const;
-    // The nearest hits of kLanes rays at once (a packet, geometry/lanes.h), all leaving the
-    // object `from_object` (-1: none), each from its facet: in every lane of `active`,
-    // intersect()'s answer bit for bit (counted as one segment per lane). Scenes of spheres
-    // only are searched on all lanes together; others lane by lane through intersect().
+    // The nearest hits of kLanes rays at once (a packet, geometry/lanes.h), each leaving the
+    // object `from_object[lane]` (-1: none) from its facet: in every lane of `active`,
+    // intersect()'s answer bit for bit (counted as one segment per lane). Spheres and planes
+    // are tested on all lanes together, and so is a plane set by the lanes that leave one of
+    // its facets (FacetGraph::intersect_lanes); other shapes, and scenes searched through the
+    // object BVH, lane by lane.
     struct LaneHits {
         LaneMask hit;
         Lanes t;
@@ -49,14 +51,14 @@ public:
         std::array<const Object*, kLanes> object{};
         std::array<std::int32_t, kLanes> facet{};
     };
+    using LaneIds = std::array<std::int32_t, kLanes>;
     LaneHits intersect_lanes(const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
-                             std::int32_t from_object, const std::array<std::int32_t, kLanes>& from_facet,
-                             RenderStats& stats) const;
-    // The lanes whose rays, leaving object `object` (an index in Scene::objects) from its
+                             const LaneIds& from_object, const LaneIds& from_facet, RenderStats& stats) const;
+    // The lanes whose rays, leaving object `object[lane]` (an index in Scene::objects) from its
     // surface at `origin`, meet nothing: where the scene holds that one sphere and nothing
     // else, and the ray moves away from its centre (as intersect() decides it). Counted as
     // the segments intersect() would have traced.
-    LaneMask escaping_lanes(std::int32_t object, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+    LaneMask escaping_lanes(const LaneIds& object, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
                             RenderStats& stats) const;
     // The same hit in every lane.
     static LaneHits lanes_of(const SurfaceHit& h);
@@ -70,6 +72,14 @@ public:
     // tests and benchmarks compare the two).
     static void set_facet_local(bool on);
     static bool facet_local();
+    // Wavelength packets (RayTreeWalkerT::walk_lanes) in the spectral eye pass and the light
+    // pass, for every tracer of the process (on by default; off: the bands one by one, the
+    // same images to the last bit).
+    static void set_wavelength_lanes(bool on);
+    static bool wavelength_lanes();
+    // Whether this scene's band rays can be walked in packets: natural light, and no uniaxial
+    // crystal (whose o and e waves the packets do not carry).
+    bool lanes_apply() const { return lanes_apply_; }
     // The camera's ray through image position (x, y) (Camera::ray, its basis computed once).
     Ray camera_ray(double x, double y) const { return scene_.camera.ray(camera_basis_, x, y); }
     Vec3 background(const Vec3& dir) const;
@@ -148,7 +158,7 @@ private:
     std::size_t facet_ids_ = 0;
     std::uint64_t id_ = 0;                                  // this tracer, for the per-thread guesses
     bool absorbing_ = false;
-    bool spheres_only_ = true;  // every object a sphere: intersect_lanes tests them on all lanes
+    bool lanes_apply_ = true;
     Camera::Basis camera_basis_;
 };
 

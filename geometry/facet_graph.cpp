@@ -46,6 +46,28 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
     return bad != 0;
 }
 
+// The same test on kLanes rays at once: the lanes of `mask` (1) whose candidate t_g[l] on
+// plane g[l] one of the n planes contradicts get bad[l] = 1. The arithmetic is
+// contradicts()'s, lane by lane.
+[[gnu::target_clones("avx512f", "avx2", "default")]] void contradicts_lanes(
+    const double* nx, const double* ny, const double* nz, const double* d, const double* index, size_t n,
+    const double* ox, const double* oy, const double* oz, const double* dx, const double* dy, const double* dz,
+    double t_min, const double* t_g, const double* g, const std::int64_t* mask, std::int64_t* bad) {
+    std::int64_t b[kLanes];
+    for (int l = 0; l < kLanes; ++l) b[l] = 0;
+    for (size_t i = 0; i < n; ++i) {
+        for (int l = 0; l < kLanes; ++l) {
+            const double denom = (nx[i] * dx[l] + ny[i] * dy[l]) + nz[i] * dz[l];
+            const double dist = d[i] - ((nx[i] * ox[l] + ny[i] * oy[l]) + nz[i] * oz[l]);
+            const double t = dist / denom;
+            const bool entering = denom < 0, leaving = denom > 0;
+            b[l] |= static_cast<std::int64_t>((!entering & !leaving) | (entering & !(t <= t_min)) |
+                                              (leaving & (!(t >= t_g[l]) | ((t == t_g[l]) & (index[i] < g[l])))));
+        }
+    }
+    for (int l = 0; l < kLanes; ++l) bad[l] |= b[l] & mask[l];
+}
+
 }  // namespace
 
 namespace {
@@ -183,6 +205,92 @@ FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r,
     }
     out.decided = true;
     if (t_g < t_max) out.hit = Hit{t_g, r.at(t_g), pg.normal, guess};
+    return out;
+}
+
+FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& v,
+                                                   const LaneMask& active, double t_min, const Lanes& t_max, int from,
+                                                   const std::array<std::int32_t, kLanes>& guess) const {
+    LocalLanes out;
+    out.decided = out.hit = LaneMask::Constant(false);
+    out.facet.fill(-1);
+    if (!usable(from) || !(t_min >= 0)) return out;
+    // intersect()'s steps on every lane: the bounding sphere (misses_bound) ...
+    LaneMask live = active;
+    if (c.bound_radius > 0) {
+        const LaneVec3 oc = o - LaneVec3::broadcast(c.bound_center);
+        const Lanes b = oc.dot(v);
+        const Lanes q = oc.squaredNorm() - Lanes(c.bound_radius * c.bound_radius);
+        const LaneMask miss = (q > Lanes(0.0)) && ((b > Lanes(0.0)) || (q > b * b));
+        out.decided = active && miss;
+        live = active && !miss;
+    }
+    // ... the starting facet's own plane: outward rays are decided by it ...
+    const Plane& ps = c.planes[static_cast<size_t>(from)];
+    const LaneVec3 ns = LaneVec3::broadcast(ps.normal);
+    const Lanes denom_s = ns.dot(v);
+    const Lanes dist_s = Lanes(ps.offset) - ns.dot(o);
+    const LaneMask outward = live && (denom_s > Lanes(0.0));
+    out.decided = out.decided || (outward && (Lanes(t_min) >= dist_s / denom_s));
+    // ... inward ones by their guess's t, unless a plane around `from` or the guess
+    // contradicts it.
+    const double near = 0.25 * tolerance_;
+    alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes], gd[kLanes], gi[kLanes];
+    LaneMask cand = live && (denom_s < Lanes(0.0));
+    for (int l = 0; l < kLanes; ++l) {
+        const int g = guess[static_cast<size_t>(l)];
+        cand[l] = cand[l] && std::abs(dist_s[l]) <= near && usable(g);
+        const Plane& pg = c.planes[static_cast<size_t>(cand[l] ? g : from)];
+        gx[l] = pg.normal.x();
+        gy[l] = pg.normal.y();
+        gz[l] = pg.normal.z();
+        gd[l] = pg.offset;
+        gi[l] = static_cast<double>(cand[l] ? g : from);
+    }
+    if (!cand.any()) return out;
+    LaneVec3 ng;
+    for (int l = 0; l < kLanes; ++l) {
+        ng.x[l] = gx[l];
+        ng.y[l] = gy[l];
+        ng.z[l] = gz[l];
+    }
+    Lanes dg;
+    for (int l = 0; l < kLanes; ++l) dg[l] = gd[l];
+    const Lanes denom_g = ng.dot(v);
+    const Lanes t_g = (dg - ng.dot(o)) / denom_g;
+    cand = cand && (denom_g > Lanes(0.0)) && (t_g > Lanes(t_min));
+    if (!cand.any()) return out;
+    alignas(64) std::int64_t mask[kLanes], bad[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        mask[l] = cand[l] ? 1 : 0;
+        bad[l] = 0;
+    }
+    const auto test = [&](int f, const std::int64_t* m) {
+        const Block& b = blocks_[static_cast<size_t>(f)];
+        contradicts_lanes(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), b.nx.size(), o.x.v, o.y.v,
+                          o.z.v, v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m, bad);
+    };
+    test(from, mask);
+    // Each guess's block, for the lanes that took it.
+    std::int64_t done[kLanes] = {};
+    for (int l = 0; l < kLanes; ++l) {
+        if (!mask[l] || done[l]) continue;
+        const int g = guess[static_cast<size_t>(l)];
+        std::int64_t same[kLanes];
+        for (int k = 0; k < kLanes; ++k) {
+            same[k] = mask[k] && !done[k] && guess[static_cast<size_t>(k)] == g ? 1 : 0;
+            done[k] |= same[k];
+        }
+        test(g, same);
+    }
+    for (int l = 0; l < kLanes; ++l) {
+        if (!mask[l] || bad[l]) continue;
+        out.decided[l] = true;
+        out.hit[l] = t_g[l] < t_max[l];
+        out.facet[static_cast<size_t>(l)] = guess[static_cast<size_t>(l)];
+    }
+    out.t = t_g;
+    out.point = o + t_g * v;
     return out;
 }
 

@@ -26,10 +26,12 @@
 // their quotient) without contraction into FMA (the file is compiled with
 // -ffp-contract=off), so equal inputs give equal bits; the test over a facet's planes is
 // vectorised (AVX-512F, AVX2 or baseline, chosen at load time).
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "geometry/lanes.h"
 #include "geometry/shapes.h"
 
 namespace refract {
@@ -58,6 +60,20 @@ public:
     // none). t_min must be >= 0. Undecided when the ray runs along `from`, when a facet is
     // not usable, or when the guess is not the leaving facet.
     Local intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max, int from, int guess) const;
+
+    // The same on kLanes rays at once (a packet, geometry/lanes.h), all leaving facet `from`,
+    // each with its own guess and window end t_max[lane]: in every lane of `active`,
+    // intersect()'s answer bit for bit (`decided`; where decided, `hit` and the hit's t,
+    // point and facet, whose outward normal is that facet's plane's).
+    struct LocalLanes {
+        LaneMask decided, hit;
+        Lanes t;
+        LaneVec3 point;
+        std::array<std::int32_t, kLanes> facet;
+    };
+    LocalLanes intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& origin, const LaneVec3& dir,
+                               const LaneMask& active, double t_min, const Lanes& t_max, int from,
+                               const std::array<std::int32_t, kLanes>& guess) const;
 
 private:
     std::vector<std::vector<std::int32_t>> neighbours_;

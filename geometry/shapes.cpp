@@ -27,13 +27,13 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
     return h;
 }
 
-__attribute__((flatten)) LaneSphereHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir,
-                                                        const LaneMask& active, double t_min, const Lanes& t_max,
-                                                        bool leaving) {
+__attribute__((flatten)) LaneShapeHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir,
+                                                       const LaneMask& active, double t_min, const Lanes& t_max,
+                                                       const LaneMask& leaving) {
     const LaneVec3 centre = LaneVec3::broadcast(s.center);
     const auto [b, disc] = sphere_quadratic<LaneVec3>(origin - centre, dir, Lanes(s.radius));
-    LaneSphereHits h;
-    const LaneMask ask = leaving ? active && !(b > Lanes(0.0)) : active;
+    LaneShapeHits h;
+    const LaneMask ask = active && !(leaving && (b > Lanes(0.0)));
     if (!ask.any()) {
         h.hit = ask;
         return h;
@@ -56,6 +56,20 @@ std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double 
     const double t = (p.offset - p.normal.dot(r.origin)) / denom;
     if (!(t > t_min && t < t_max)) return std::nullopt;  // NaN is no hit
     return Hit{t, r.at(t), p.normal, -1};
+}
+
+__attribute__((flatten)) LaneShapeHits intersect_lanes(const Plane& p, const LaneVec3& origin, const LaneVec3& dir,
+                                                       const LaneMask& active, double t_min, const Lanes& t_max) {
+    // As the scalar test: no hit where the ray is parallel, nor where t is NaN.
+    const LaneVec3 n = LaneVec3::broadcast(p.normal);
+    const Lanes denom = n.dot(dir);
+    const Lanes t = (Lanes(p.offset) - n.dot(origin)) / denom;
+    LaneShapeHits h;
+    h.hit = active && ((denom > Lanes(0.0)) || (denom < Lanes(0.0))) && (t > Lanes(t_min)) && (t < t_max);
+    h.t = t;
+    h.point = origin + t * dir;
+    h.normal = n;
+    return h;
 }
 
 std::optional<TriangleT> triangle_t(const Vec3& a, const Vec3& e1, const Vec3& e2, const Ray& r) {

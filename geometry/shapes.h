@@ -74,18 +74,20 @@ SphereQuadratic<V> sphere_quadratic(const V& oc, const V& dir, typename V::Scala
     return {b, b * b - c};
 }
 
-// The sphere test on kLanes rays at once (geometry/lanes.h): in each lane of `active`, the
-// hit of intersect(s, ray, t_min, t_max[lane]) bit for bit: `hit` where there is one, with
-// its t, point and outward normal (other lanes: unspecified). `leaving`: the rays start on
-// this sphere, and those moving away from its centre (b = oc·d > 0) do not meet it again
-// (none of them: `hit` all false, the rest unspecified).
-struct LaneSphereHits {
+// A shape's test on kLanes rays at once (geometry/lanes.h): in each lane of `active`, the
+// hit of intersect(shape, ray, t_min, t_max[lane]) bit for bit: `hit` where there is one,
+// with its t, point and outward normal (other lanes: unspecified).
+struct LaneShapeHits {
     LaneMask hit;
     Lanes t;
     LaneVec3 point, normal;
 };
-LaneSphereHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
-                               double t_min, const Lanes& t_max, bool leaving = false);
+// `leaving`: the lanes whose rays start on this sphere; those moving away from its centre
+// (b = oc·d > 0) do not meet it again.
+LaneShapeHits intersect_lanes(const Sphere& s, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+                              double t_min, const Lanes& t_max, const LaneMask& leaving = LaneMask::Constant(false));
+LaneShapeHits intersect_lanes(const Plane& p, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
+                              double t_min, const Lanes& t_max);
 std::optional<Hit> intersect(const Plane& p, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const TriangleMesh& m, const Ray& r, double t_min, double t_max);
 std::optional<Hit> intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max);

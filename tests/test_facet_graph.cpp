@@ -273,7 +273,7 @@ TEST_CASE("The sphere test on a packet of rays equals the one-ray test in every 
                 t_max[l] = l % 4 == 3 ? std::abs(radius) * (1 + u(rng)) : kInf;
                 active[l] = l != 5 || i % 2 == 0;
             }
-            const LaneSphereHits h = intersect_lanes(s, o, d, active, 1e-6, t_max);
+            const LaneShapeHits h = intersect_lanes(s, o, d, active, 1e-6, t_max);
             for (int l = 0; l < kLanes; ++l) {
                 if (!active[l]) continue;
                 ++compared;

@@ -340,7 +340,7 @@ TEST_CASE("Far field: the wavelengths of a photon walked in packets give the one
         s.polar_bins = 12;
         check_same(lanes_and_alone(j, s), true);
     }
-    SECTION("a prism (plane set) and a Schlick drop: lanes walked alone") {
+    SECTION("a prism (plane set) and a Schlick drop: nodes lane by lane") {
         json j = dispersive_drop();
         // A slab behind the drop, 1.5 < z < 2.5, bounded sideways: a plane set.
         j["objects"].push_back({{"type", "polyhedron"},

@@ -166,17 +166,110 @@ private:
         return sub.sum;
     }
 
-    // The subtree below hit h traced at one band.
+    // The subtree below hit h traced at one band (its losses summed on their own, as a
+    // packet sums each lane's).
     Acc band_tree(Walker& w, const Entry& e, const SurfaceHit& h, int band) {
         const std::uint64_t before = stats_.segments;
         Entry eb = e;
         eb.band = static_cast<std::int16_t>(band);
         List list;
         SpectralEnds sub(tracer_, ctx_, stats_, bands_);
-        w.expand(eb, h, ctx_.index[static_cast<size_t>(band)][static_cast<size_t>(h.object->material)], list, sub);
-        w.walk(list, sub);
+        w.own_losses([&] {
+            w.expand(eb, h, ctx_.index[static_cast<size_t>(band)][static_cast<size_t>(h.object->material)], list, sub);
+            w.walk(list, sub);
+        });
         stats_.wavelength_segments += stats_.segments - before;
         return sub.sum;
+    }
+
+    // Each lane of a packet walk with its own ends (its own sum).
+    struct LaneEnds {
+        std::array<SpectralEnds*, kLanes> ends{};
+        SpectralEnds& lane(int l) { return *ends[static_cast<size_t>(l)]; }
+    };
+
+    // Whether the bands of a split are walked in packets (RayTreeWalkerT::walk_lanes).
+    bool packets() const {
+        return std::is_same_v<P, NaturalLight> && SceneTracer::wavelength_lanes() && tracer_.lanes_apply();
+    }
+
+    // The subtrees below hit h at `bands`, walked kLanes bands at a time: band_tree() of each,
+    // to the last bit, added to the sum (tinted by the band's weight) in band order.
+    void band_trees(Walker& w, const Entry& e, const SurfaceHit& h, const std::vector<int>& bands, Acc& sum) {
+        if constexpr (std::is_same_v<P, NaturalLight>) {
+            const SceneTracer::LaneHits hl = SceneTracer::lanes_of(h);
+            FifoList<LaneEntry> packets;  // reused: it allocates only while it grows
+            std::vector<SpectralEnds> subs(static_cast<size_t>(kLanes), SpectralEnds(tracer_, ctx_, stats_, bands_));
+            for (size_t i0 = 0; i0 < bands.size(); i0 += kLanes) {
+                LaneEntry pk;
+                LaneEnds ends;
+                for (int l = 0; l < kLanes; ++l) {
+                    const size_t i = i0 + static_cast<size_t>(l);
+                    Entry eb = e;
+                    eb.band = static_cast<std::int16_t>(bands[i < bands.size() ? i : i0]);
+                    pk.set(l, eb);
+                    pk.active[l] = i < bands.size();
+                    subs[static_cast<size_t>(l)].sum.setZero();
+                    ends.ends[static_cast<size_t>(l)] = &subs[static_cast<size_t>(l)];
+                }
+                const std::uint64_t before = stats_.segments;
+                LaneLosses lost;
+                w.expand_lanes(pk, pk.active, hl, packets, ends, lost);
+                w.walk_lanes(packets, ends, lost);
+                stats_.wavelength_segments += stats_.segments - before;
+                for (int l = 0; l < kLanes; ++l) {
+                    if (!pk.active[l]) continue;
+                    w.add_losses(lost, l);
+                    sum += tinted(ctx_.weights[static_cast<size_t>(pk.band[static_cast<size_t>(l)])],
+                                  subs[static_cast<size_t>(l)].sum);
+                }
+            }
+        }
+    }
+
+    // POV-Ray mode: the band loop of split() with the bands' refracted rays walked kLanes
+    // at a time, to the last bit as one by one (the mirror bands gathered as there).
+    void pov_bands_in_packets(Walker& w, const Entry& e, const SurfaceHit& h, const std::vector<int>& bands,
+                              const Interaction& first, Acc& sum, std::optional<Branch>& mirror, Vec3& mirror_weight) {
+        if constexpr (std::is_same_v<P, NaturalLight>) {
+            const size_t mi = static_cast<size_t>(h.object->material);
+            // Each band's interaction, in band order (the mirror bands' weights summed in it).
+            std::vector<std::pair<int, Branch>> refracted;
+            for (const int k : bands) {
+                const size_t kb = static_cast<size_t>(k);
+                const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
+                if (bn.split_mirror) {
+                    mirror = bn.branch[1];
+                    mirror_weight += ctx_.weights[kb];
+                    continue;
+                }
+                refracted.emplace_back(k, bn.branch[1]);
+            }
+            FifoList<LaneEntry> packets;
+            std::vector<SpectralEnds> subs(static_cast<size_t>(kLanes), SpectralEnds(tracer_, ctx_, stats_, bands_));
+            for (size_t i0 = 0; i0 < refracted.size(); i0 += kLanes) {
+                const std::uint64_t before = stats_.segments;
+                LaneEntry child[2];
+                LaneEnds ends;
+                LaneLosses lost;
+                const int n = static_cast<int>(std::min<size_t>(kLanes, refracted.size() - i0));
+                for (int l = 0; l < n; ++l) {
+                    const auto& [k, br] = refracted[i0 + static_cast<size_t>(l)];
+                    subs[static_cast<size_t>(l)].sum.setZero();
+                    ends.ends[static_cast<size_t>(l)] = &subs[static_cast<size_t>(l)];
+                    w.push_lane(child[0], l, e, h, br, true, lost, Vec3(1, 1, 1), k);
+                }
+                for (int l = n; l < kLanes; ++l) ends.ends[static_cast<size_t>(l)] = &subs[0];  // not used
+                w.queue(child, packets, ends);
+                w.walk_lanes(packets, ends, lost);
+                for (int l = 0; l < n; ++l) {
+                    w.add_losses(lost, l);
+                    sum += tinted(ctx_.weights[static_cast<size_t>(refracted[i0 + static_cast<size_t>(l)].first)],
+                                  subs[static_cast<size_t>(l)].sum);
+                }
+                stats_.wavelength_segments += stats_.segments - before;
+            }
+        }
     }
 
     Acc split(Walker& w, const Entry& e, const SurfaceHit& h, List& rgb_list) {
@@ -196,7 +289,9 @@ private:
             // band that meets TIR: traced once with the sum of their weights.
             Vec3 mirror_weight(0, 0, 0);
             std::optional<Branch> mirror;  // POV-Ray mode: natural light, no Mueller matrix
-            for (const int k : bands) {
+            if (packets()) {
+                pov_bands_in_packets(w, e, h, bands, first, sum, mirror, mirror_weight);
+            } else for (const int k : bands) {
                 const size_t kb = static_cast<size_t>(k);
                 const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
                 if (bn.split_mirror) {
@@ -205,9 +300,13 @@ private:
                     continue;
                 }
                 const std::uint64_t before = stats_.segments;
-                List list;
-                w.push(e, h, bn, 1, true, list, Vec3(1, 1, 1), k);
-                sum += tinted(ctx_.weights[kb], subwalk(w, list));
+                Acc band;
+                w.own_losses([&] {
+                    List list;
+                    w.push(e, h, bn, 1, true, list, Vec3(1, 1, 1), k);
+                    band = subwalk(w, list);
+                });
+                sum += tinted(ctx_.weights[kb], band);
                 stats_.wavelength_segments += stats_.segments - before;
             }
             if (mirror) {
@@ -231,6 +330,10 @@ private:
                     for (double& b : *bands_) b += rgb_of(mean).mean();
                 return mean;
             }
+        }
+        if (packets()) {
+            band_trees(w, e, h, ctx_.split_bands[mi], sum);
+            return sum;
         }
         for (const int k : ctx_.split_bands[mi]) sum += tinted(ctx_.weights[static_cast<size_t>(k)], band_tree(w, e, h, k));
         return sum;
