@@ -60,19 +60,21 @@ Interaction dielectric_pov(const material::Dielectric& m, const SurfaceHit& h, c
     // total internal reflection; the refracted ray then turns into the mirror ray below.
     if (!refr && !band && m.reflectance != ReflectanceModel::Constant) R = 1.0;
     const Vec3 filter = (1.0 - R) * m.filter;
-    const double trans = std::fmin(1.0, std::abs(filter.dot(SceneTracer::kPovGreyscale)));
+    const double f[3] = {filter[0], filter[1], filter[2]};
+    const double trans = pov_filter_greyscale(f, SceneTracer::kPovGreyscale);
+    const double adc_weight = largest_of(std::abs(f[0]), std::abs(f[1]), std::abs(f[2]));
     const Ray reflected{h.hit.point, optics::reflect(ray.dir, h.normal).normalized()};
     Interaction n;
     n.reflectance = R;
     if (trans > adc && !refr && split) {  // a band's total internal reflection at the split
         n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
-        n.branch[1] = Branch{reflected, filter.cwiseProduct(fade), filter.cwiseAbs().maxCoeff()};
+        n.branch[1] = Branch{reflected, filter.cwiseProduct(fade), adc_weight};
         n.branches = 2;
         n.split_mirror = true;
         return n;
     }
     if (trans > adc && !refr) {  // the refracted ray turns into total internal reflection
-        n.branch[0] = Branch{reflected, fade, filter.cwiseAbs().maxCoeff()};
+        n.branch[0] = Branch{reflected, fade, adc_weight};
         n.branches = 1;
         n.reflectance = 1.0;
         return n;
@@ -80,7 +82,7 @@ Interaction dielectric_pov(const material::Dielectric& m, const SurfaceHit& h, c
     n.branch[0] = Branch{reflected, Vec3::Constant(R), R};
     n.branches = 1;
     if (trans > adc) {
-        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, filter.cwiseProduct(fade), filter.cwiseAbs().maxCoeff()};
+        n.branch[1] = Branch{Ray{h.hit.point, refr->normalized()}, filter.cwiseProduct(fade), adc_weight};
         n.branches = 2;
     }
     return n;

@@ -101,6 +101,25 @@ S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, S eta) {
     return dielectric_reflectance(model, constant, cos_i, optics::generic::cos_transmitted(cos_i, eta), eta);
 }
 
+// The largest of three values (Eigen's maxCoeff of a 3-vector: max(max(x, y), z)), over
+// the scalar type (doubles, lanes).
+template <class S>
+S largest_of(const S& x, const S& y, const S& z) {
+    using optics::generic::max_of;
+    return max_of(max_of(x, y), z);
+}
+
+// POV-Ray 3.7's refraction test (trace.cpp ComputeRefraction): the greyscale of the
+// surface's filter colour f = (1 − R)·filter under the weights `grey` (RED, GREEN and
+// BLUE_INTENSITY), |f·grey| at most 1 (fmin(1, ·): a NaN gives 1). A refracted ray is spawned
+// only where it exceeds adc_bailout; its adc weight is largest_of(|f|). Over the scalar type.
+template <class S>
+S pov_filter_greyscale(const S (&f)[3], const Vec3& grey) {
+    using std::abs;
+    using optics::generic::min_of;
+    return min_of(S(abs(f[0] * S(grey[0]) + f[1] * S(grey[1]) + f[2] * S(grey[2]))), S(1.0));
+}
+
 // A dielectric node in the physical mode (Yasuda 1984 §3.1.3 ③ and ④): reflected and
 // refracted directions (unit), the reflectance R, and the refracted branch's colour and
 // threshold factors. Written over the vector type V (Scalar, dot, normalized, maxCoeff,

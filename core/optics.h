@@ -38,6 +38,11 @@ template <class S>
 S min_of(S a, S b) {
     return a < b ? a : b;
 }
+// a < b ? b : a (std::max's rule).
+template <class S>
+S max_of(S a, S b) {
+    return a < b ? b : a;
+}
 
 // Snell's law: sin θt = sin θi / eta, as sin²θt (total internal reflection where it is
 // >= 1), and cos θt from it.

@@ -123,6 +123,10 @@ struct LaneEntry {
     std::array<std::int32_t, kLanes> object, facet;  // the hit each ray leaves (-1: none)
     std::int16_t depth = 0;
 
+    // Lanes inactive; the rest left as it is (a packet is filled before use, and a list of
+    // packets grows without zeroing it).
+    LaneEntry() {}
+
     // Lane l as the walker's entry.
     TreeEntry lane(int l) const {
         const size_t i = static_cast<size_t>(l);
@@ -267,7 +271,7 @@ public:
         while (!list.empty()) {
             if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
                 tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
-            list.reserve_more(3);  // p's children: p stays in place until it is popped
+            list.reserve_more(2);  // p's children: p stays in place until it is popped
             const LaneEntry& p = list.front();
             const SceneTracer::LaneHits h = tracer_.intersect_lanes(p.origin, p.dir, p.active, p.object, p.facet, stats_);
             const LaneMask missed = p.active && !h.hit;
@@ -328,20 +332,26 @@ public:
         child[0].depth = child[1].depth = static_cast<std::int16_t>(p.depth + 1);
         if (together.any()) node_lanes(p, together, h, *m0, *d, child, ends, lost);
         // Every other lane through its own interaction.
-        for (int l = 0; l < kLanes && !all_together; ++l) {
-            if (!at[l] || together[l]) continue;
-            const TreeEntry e = p.lane(l);
-            const SurfaceHit hl = tracer_.surface_hit(h, l);
-            auto& el = ends.lane(l);
-            const Interaction in = tracer_.interact(hl, e.ray, stats_, el.band_ior(e, hl), false, e.wave, el.wavelength(e));
-            if (in.leaf) {
-                el.leaf(e, hl);
-                continue;
-            }
-            for (int b = 0; b < in.branches && b < 2; ++b)
-                push_lane(child[b], l, e, hl, in.branch[static_cast<size_t>(b)], in.transmitted[static_cast<size_t>(b)], lost);
-        }
+        for (int l = 0; l < kLanes && !all_together; ++l)
+            if (at[l] && !together[l]) interact_lane(p, l, h, child, ends, lost);
         queue(child, list, ends);
+    }
+
+    // Lane l of packet p at its hit through its own interaction, as expand(): a leaf to its
+    // ends, its children into the packets `child`.
+    template <class LaneEnds>
+    __attribute__((noinline)) void interact_lane(const LaneEntry& p, int l, const SceneTracer::LaneHits& h,
+                                                 LaneEntry (&child)[2], LaneEnds& ends, LaneLosses& lost) {
+        const TreeEntry e = p.lane(l);
+        const SurfaceHit hl = tracer_.surface_hit(h, l);
+        auto& el = ends.lane(l);
+        const Interaction in = tracer_.interact(hl, e.ray, stats_, el.band_ior(e, hl), false, e.wave, el.wavelength(e));
+        if (in.leaf) {
+            el.leaf(e, hl);
+            return;
+        }
+        for (int b = 0; b < in.branches && b < 2; ++b)
+            push_lane(child[b], l, e, hl, in.branch[static_cast<size_t>(b)], in.transmitted[static_cast<size_t>(b)], lost);
     }
 
     // Lane l of packet `child` takes entry e's child along branch br (at hit h), unless
@@ -363,15 +373,19 @@ public:
     template <class LaneEnds>
     void queue(LaneEntry (&child)[2], FifoList<LaneEntry>& list, LaneEnds& ends) {
         for (LaneEntry& c : child) {
-            if (!c.active.any()) continue;
-            const LaneMask gone = tracer_.escaping_lanes(c.object, c.origin, c.dir, c.active, stats_);
-            if (gone.any()) {
-                background_lanes(c, gone, ends);
-                c.active = c.active && !gone;
-                if (!c.active.any()) continue;
-            }
-            list.push_back(c);
+            end_escaping(c, ends);
+            if (c.active.any()) list.push_back(c);
         }
+    }
+    // The lanes of packet c known to leave the scene (SceneTracer::escaping_lanes) end here,
+    // as the walk would end them.
+    template <class LaneEnds>
+    void end_escaping(LaneEntry& c, LaneEnds& ends) {
+        if (!c.active.any()) return;
+        const LaneMask gone = tracer_.escaping_lanes(c.object, c.origin, c.dir, c.active, stats_);
+        if (!gone.any()) return;
+        background_lanes(c, gone, ends);
+        c.active = c.active && !gone;
     }
 
     // Runs f with the walker's dropped-light sums started from zero, then added to what they
@@ -464,8 +478,7 @@ private:
         const Lanes R = select(tir, Lanes(1.0), gen::fresnel_terms(cos_i, cos_t, eta).R());
         Lanes transmit[3];
         for (int c = 0; c < 3; ++c) transmit[c] = (Lanes(1.0) - R) * Lanes(d.filter[c]);
-        Lanes transmit_bailout = transmit[0];  // the largest component, as maxCoeff
-        for (int c = 1; c < 3; ++c) transmit_bailout = select(transmit[c] > transmit_bailout, transmit[c], transmit_bailout);
+        const Lanes transmit_bailout = largest_of(transmit[0], transmit[1], transmit[2]);  // maxCoeff
         const LaneMask refracts = m && !tir && (R < Lanes(1.0));
         fill_child(child[0], p, h, m, gen::reflect(p.dir, h.normal).normalized(), {R, R, R}, R, false, lost);
         if (refracts.any())
@@ -491,16 +504,9 @@ private:
         const LaneMask tir = sin2_t >= Lanes(1.0);
         Lanes filter[3];
         for (int c = 0; c < 3; ++c) filter[c] = (Lanes(1.0) - R) * Lanes(d.filter[c]);
-        // fmin(1, |filter · greyscale|) and filter.cwiseAbs().maxCoeff()
-        const Vec3& g = SceneTracer::kPovGreyscale;
-        Lanes grey = filter[0] * Lanes(g[0]) + filter[1] * Lanes(g[1]) + filter[2] * Lanes(g[2]);
-        Lanes largest;
-        for (int l = 0; l < kLanes; ++l) {
-            grey[l] = std::fmin(1.0, std::abs(grey[l]));
-            const double a = std::abs(filter[0][l]), b = std::abs(filter[1][l]), c = std::abs(filter[2][l]);
-            largest[l] = std::max(std::max(a, b), c);
-        }
-        const LaneMask spawn = grey > Lanes(settings_adc());
+        const Lanes grey = pov_filter_greyscale(filter, SceneTracer::kPovGreyscale);
+        const Lanes largest = largest_of(abs(filter[0]), abs(filter[1]), abs(filter[2]));
+        const LaneMask spawn = grey > Lanes(tracer_.settings().pruning_threshold());
         const LaneMask mirror = m && spawn && tir;  // the refracted ray turned into total internal reflection
         const LaneMask normal = m && !mirror;
         const LaneVec3 reflected = gen::reflect(p.dir, h.normal).normalized();
@@ -516,7 +522,6 @@ private:
                        gen::refracted_direction(p.dir, h.normal, cos_i, gen::cos_of_sin2(sin2_t), eta).normalized(),
                        filter, largest, true, lost);
     }
-    double settings_adc() const { return tracer_.settings().pruning_threshold(); }
 
     // The lanes `m` of a fresh child c (no lane set yet): leaving hit h of packet p along
     // `dir`, with colour factors f and threshold factor bf (push()'s attenuation), unless

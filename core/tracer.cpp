@@ -261,19 +261,23 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
                 out.facet[static_cast<size_t>(l)] = -1;
             }
     };
+    // Lane l's nearest hit so far: h, on object k.
+    const auto keep = [&](int l, size_t k, const Hit& h) {
+        const size_t i = static_cast<size_t>(l);
+        best[l] = h.t;
+        out.point.set(l, h.point);
+        outward.set(l, h.normal);
+        out.hit[l] = true;
+        out.object[i] = order_[k];
+        out.facet[i] = h.facet;
+    };
     // Object k asked for lane l alone, as nearest() asks it.
     const auto one = [&](size_t k, int l) {
         const size_t i = static_cast<size_t>(l);
         const Ray r{origin.lane(l), dir.lane(l)};
         const auto h = from_k[i] == k ? intersect_from(k, from_facet[i], r, t_min, best[l], stats)
                                       : intersect_object(k, r, t_min, best[l]);
-        if (!h) return;
-        best[l] = h->t;
-        out.point.set(l, h->point);
-        outward.set(l, h->normal);
-        out.hit[l] = true;
-        out.object[i] = order_[k];
-        out.facet[i] = h->facet;
+        if (h) keep(l, k, *h);
     };
     // In order, as nearest(): a hit replaces the best one only when strictly nearer.
     for (size_t k = 0; k < order_.size(); ++k) {
@@ -317,17 +321,11 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
                 // when its guess fails).
                 const auto full = [&](int l) {
                     ++stats.facet_full;
-                    const size_t i = static_cast<size_t>(l);
                     const Ray r{origin.lane(l), dir.lane(l)};
                     const auto hit = intersect_object(k, r, t_min, best[l]);
                     if (!hit) return;
                     cache.store(id, r.dir, hit->facet, 0, false);
-                    best[l] = hit->t;
-                    out.point.set(l, hit->point);
-                    outward.set(l, hit->normal);
-                    out.hit[l] = true;
-                    out.object[i] = order_[k];
-                    out.facet[i] = hit->facet;
+                    keep(l, k, *hit);
                 };
                 // A direction never seen from this facet: the first lane fills the cache.
                 if (cache.guess(id, dir.lane(first)).first < 0) {
@@ -350,14 +348,9 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
                     stats.facet_local += static_cast<std::uint64_t>(decided.count());
                     for (int l = 0; l < kLanes; ++l) {
                         if (!decided[l] || !loc.hit[l]) continue;
-                        const size_t i = static_cast<size_t>(l);
-                        cache.store(id, dir.lane(l), loc.facet[i], slot[i], true);
-                        best[l] = loc.t[l];
-                        out.point.set(l, loc.point.lane(l));
-                        outward.set(l, c.planes[static_cast<size_t>(loc.facet[i])].normal);
-                        out.hit[l] = true;
-                        out.object[i] = order_[k];
-                        out.facet[i] = loc.facet[i];
+                        const int g = loc.facet[static_cast<size_t>(l)];
+                        cache.store(id, dir.lane(l), g, slot[static_cast<size_t>(l)], true);
+                        keep(l, k, Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(g)].normal, g});
                     }
                     local = local && !decided;
                     int u = -1;

@@ -111,6 +111,18 @@ struct LanesT {
 #endif
         return r;
     }
+    // a < b ? b : a in every lane (the scalar laws' max_of, std::max).
+    friend REFRACT_LANE_OP LanesT max_of(const LanesT& a, const LanesT& b) {
+        LanesT r;
+        for (int i = 0; i < kLanes; ++i) r.v[i] = a.v[i] < b.v[i] ? b.v[i] : a.v[i];
+        return r;
+    }
+    // |a| in every lane (the sign bit cleared, as std::abs).
+    friend REFRACT_LANE_OP LanesT abs(const LanesT& a) {
+        LanesT r;
+        for (int i = 0; i < kLanes; ++i) r.v[i] = std::abs(a.v[i]);
+        return r;
+    }
     // a < b ? a : b in every lane (the scalar laws' min_of).
     friend REFRACT_LANE_OP LanesT min_of(const LanesT& a, const LanesT& b) {
         LanesT r;

@@ -31,6 +31,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 using test::bits;
 using test::identical;
+using test::random_direction;
 
 std::string show(double x) {
     std::ostringstream o;
@@ -98,14 +99,6 @@ struct Checker {
         }
     }
 };
-
-Vec3 random_direction(std::mt19937_64& rng) {
-    std::normal_distribution<double> g;
-    for (;;) {
-        const Vec3 v(g(rng), g(rng), g(rng));
-        if (v.norm() > 1e-6) return v.normalized();
-    }
-}
 
 bool inside(const ConvexPolyhedron& c, const Vec3& p) {
     for (const Plane& q : c.planes)

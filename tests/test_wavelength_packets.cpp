@@ -1,13 +1,10 @@
 // Wavelength packets (RayTreeWalkerT::walk_lanes): the bands of a spectral split walked
 // eight at a time in the eye pass and the light pass give the images, the lost light and the
-// illumination maps of the bands walked one by one, to the last bit; and the packet tests of
-// planes and of a plane set's facets give the one-ray answers in every lane.
+// illumination maps of the bands walked one by one, to the last bit. (The packet tests of
+// spheres, planes and a plane set's facets: test_facet_graph.cpp.)
 #include <catch2/catch.hpp>
 
 #include <cstdint>
-#include <limits>
-#include <optional>
-#include <random>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -17,26 +14,13 @@
 #include "core/scene_json.h"
 #include "core/tracer.h"
 #include "experiments/ohtsuka1998.h"
-#include "geometry/facet_graph.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/shapes.h"
 #include "tests/hit_bits.h"
 
 using namespace refract;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 using test::bits;
-using test::identical;
-
-Vec3 random_direction(std::mt19937_64& rng) {
-    std::normal_distribution<double> n(0, 1);
-    for (;;) {
-        const Vec3 v(n(rng), n(rng), n(rng));
-        if (v.norm() > 1e-6) return v.normalized();
-    }
-}
 
 // Renders s with the bands in packets and one by one; the number of differing values of
 // the image and of the lost-light image.
@@ -59,13 +43,6 @@ Pair render_both(const Scene& s) {
                 p.image_bits += bits(p.lanes.image.at(i, j)[c]) != bits(p.one_by_one.image.at(i, j)[c]);
     for (size_t k = 0; k < p.lanes.lost.size(); ++k) p.lost_bits += bits(p.lanes.lost[k]) != bits(p.one_by_one.lost[k]);
     return p;
-}
-
-ConvexPolyhedron brilliant() {
-    const Gem gem = build_brilliant(BrilliantCut{});
-    ConvexPolyhedron c = gem.solid;
-    set_bound(c, gem.mesh.vertices);
-    return c;
 }
 
 }  // namespace
@@ -152,93 +129,4 @@ TEST_CASE("Dispersive spheres, a mesh, absorbing glass, a mirror and a Schlick d
     CHECK(p.lanes.stats.segments == p.one_by_one.stats.segments);
     CHECK(p.image_bits == 0);
     CHECK(p.lost_bits == 0);
-}
-
-TEST_CASE("Facet-local intersection of a packet of rays leaving one facet equals the one-ray answer in every lane",
-          "[geometry]") {
-    // Packets leaving hits on the brilliant's facets, inward and outward, each lane with the
-    // right guess, a random one or none: every lane decided as FacetGraph::intersect decides
-    // it, with the same hit to the last bit.
-    const ConvexPolyhedron c = brilliant();
-    const FacetGraph g(c);
-    std::mt19937_64 rng(5);
-    std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
-    long lanes = 0, decided = 0, mismatches = 0;
-    for (int i = 0; i < 6000; ++i) {
-        const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
-        const Vec3 to = c.bound_center + 0.9 * c.bound_radius * random_direction(rng);
-        const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
-        if (!hit || !g.usable(hit->facet)) continue;
-        const Vec3 n = c.planes[static_cast<size_t>(hit->facet)].normal;
-        Vec3 d0 = random_direction(rng);
-        if ((d0.dot(n) > 0) != (i % 4 == 0)) d0 = -d0;  // a quarter outward
-        LaneVec3 o, d;
-        Lanes t_max;
-        LaneMask active;
-        std::array<std::int32_t, kLanes> guess;
-        for (int l = 0; l < kLanes; ++l) {
-            // The wavelengths of a split: nearly the same direction from nearly the same point.
-            const Vec3 dir = (d0 + 0.01 * random_direction(rng)).normalized();
-            o.set(l, hit->point);
-            d.set(l, dir);
-            t_max[l] = l == 6 ? 0.05 : kInf;
-            active[l] = l != 3 || i % 2 == 0;
-            const auto want = intersect(c, Ray{hit->point, dir}, 1e-6, t_max[l]);
-            guess[static_cast<size_t>(l)] = l % 3 == 0 ? -1 : l % 3 == 1 && want ? want->facet : any(rng);
-        }
-        const FacetGraph::LocalLanes loc = g.intersect_lanes(c, o, d, active, 1e-6, t_max, hit->facet, guess);
-        for (int l = 0; l < kLanes; ++l) {
-            if (!active[l]) continue;
-            ++lanes;
-            const Ray r{o.lane(l), d.lane(l)};
-            const FacetGraph::Local one = g.intersect(c, r, 1e-6, t_max[l], hit->facet, guess[static_cast<size_t>(l)]);
-            if (loc.decided[l] != one.decided) {
-                ++mismatches;
-                continue;
-            }
-            if (!one.decided) continue;
-            ++decided;
-            std::optional<Hit> got;
-            if (loc.hit[l])
-                got = Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(loc.facet[static_cast<size_t>(l)])].normal,
-                          loc.facet[static_cast<size_t>(l)]};
-            mismatches += !identical(got, one.hit) || !identical(got, intersect(c, r, 1e-6, t_max[l]));
-        }
-    }
-    CHECK(lanes > 20000);
-    CHECK(decided > lanes / 3);
-    CHECK(mismatches == 0);
-}
-
-TEST_CASE("The plane test on a packet of rays equals the one-ray test in every lane, bit for bit", "[geometry]") {
-    std::mt19937_64 rng(13);
-    std::uniform_real_distribution<double> u(-2, 2);
-    const Plane p{Vec3(0.3, 0.9, -0.2).normalized(), 0.4};
-    long compared = 0, hits = 0, mismatches = 0;
-    for (int i = 0; i < 10000; ++i) {
-        LaneVec3 o, d;
-        Lanes t_max;
-        LaneMask active;
-        for (int l = 0; l < kLanes; ++l) {
-            Vec3 dir = random_direction(rng);
-            if (l == 7) dir = (dir - dir.dot(p.normal) * p.normal).normalized();  // parallel to the plane
-            o.set(l, Vec3(u(rng), u(rng), u(rng)));
-            d.set(l, dir);
-            t_max[l] = l % 4 == 3 ? 1.0 : kInf;
-            active[l] = l != 2 || i % 2 == 0;
-        }
-        const LaneShapeHits h = intersect_lanes(p, o, d, active, 1e-6, t_max);
-        for (int l = 0; l < kLanes; ++l) {
-            if (!active[l]) continue;
-            ++compared;
-            const auto want = intersect(p, Ray{o.lane(l), d.lane(l)}, 1e-6, t_max[l]);
-            std::optional<Hit> got;
-            if (h.hit[l]) got = Hit{h.t[l], h.point.lane(l), h.normal.lane(l), -1};
-            hits += want.has_value();
-            mismatches += !identical(want, got);
-        }
-    }
-    CHECK(compared > 70000);
-    CHECK(hits > compared / 4);
-    CHECK(mismatches == 0);
 }

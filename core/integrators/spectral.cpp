@@ -200,9 +200,10 @@ private:
             const SceneTracer::LaneHits hl = SceneTracer::lanes_of(h);
             FifoList<LaneEntry> packets;  // reused: it allocates only while it grows
             std::vector<SpectralEnds> subs(static_cast<size_t>(kLanes), SpectralEnds(tracer_, ctx_, stats_, bands_));
+            LaneEnds ends;
+            for (size_t l = 0; l < subs.size(); ++l) ends.ends[l] = &subs[l];
             for (size_t i0 = 0; i0 < bands.size(); i0 += kLanes) {
                 LaneEntry pk;
-                LaneEnds ends;
                 for (int l = 0; l < kLanes; ++l) {
                     const size_t i = i0 + static_cast<size_t>(l);
                     Entry eb = e;
@@ -210,7 +211,6 @@ private:
                     pk.set(l, eb);
                     pk.active[l] = i < bands.size();
                     subs[static_cast<size_t>(l)].sum.setZero();
-                    ends.ends[static_cast<size_t>(l)] = &subs[static_cast<size_t>(l)];
                 }
                 const std::uint64_t before = stats_.segments;
                 LaneLosses lost;
@@ -227,44 +227,36 @@ private:
         }
     }
 
-    // POV-Ray mode: the band loop of split() with the bands' refracted rays walked kLanes
-    // at a time, to the last bit as one by one (the mirror bands gathered as there).
-    void pov_bands_in_packets(Walker& w, const Entry& e, const SurfaceHit& h, const std::vector<int>& bands,
-                              const Interaction& first, Acc& sum, std::optional<Branch>& mirror, Vec3& mirror_weight) {
+    // A band's refracted ray at a POV-Ray split.
+    struct BandRay {
+        int band;
+        Branch branch;
+    };
+
+    // POV-Ray mode: the bands' refracted rays walked kLanes at a time, each band's light
+    // added to the sum (tinted by its weight) in band order, as one by one.
+    void pov_bands_in_packets(Walker& w, const Entry& e, const SurfaceHit& h, const std::vector<BandRay>& rays,
+                              Acc& sum) {
         if constexpr (std::is_same_v<P, NaturalLight>) {
-            const size_t mi = static_cast<size_t>(h.object->material);
-            // Each band's interaction, in band order (the mirror bands' weights summed in it).
-            std::vector<std::pair<int, Branch>> refracted;
-            for (const int k : bands) {
-                const size_t kb = static_cast<size_t>(k);
-                const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
-                if (bn.split_mirror) {
-                    mirror = bn.branch[1];
-                    mirror_weight += ctx_.weights[kb];
-                    continue;
-                }
-                refracted.emplace_back(k, bn.branch[1]);
-            }
             FifoList<LaneEntry> packets;
             std::vector<SpectralEnds> subs(static_cast<size_t>(kLanes), SpectralEnds(tracer_, ctx_, stats_, bands_));
-            for (size_t i0 = 0; i0 < refracted.size(); i0 += kLanes) {
+            LaneEnds ends;
+            for (size_t l = 0; l < subs.size(); ++l) ends.ends[l] = &subs[l];
+            for (size_t i0 = 0; i0 < rays.size(); i0 += kLanes) {
                 const std::uint64_t before = stats_.segments;
                 LaneEntry child[2];
-                LaneEnds ends;
                 LaneLosses lost;
-                const int n = static_cast<int>(std::min<size_t>(kLanes, refracted.size() - i0));
+                const int n = static_cast<int>(std::min<size_t>(kLanes, rays.size() - i0));
                 for (int l = 0; l < n; ++l) {
-                    const auto& [k, br] = refracted[i0 + static_cast<size_t>(l)];
+                    const BandRay& r = rays[i0 + static_cast<size_t>(l)];
                     subs[static_cast<size_t>(l)].sum.setZero();
-                    ends.ends[static_cast<size_t>(l)] = &subs[static_cast<size_t>(l)];
-                    w.push_lane(child[0], l, e, h, br, true, lost, Vec3(1, 1, 1), k);
+                    w.push_lane(child[0], l, e, h, r.branch, true, lost, Vec3(1, 1, 1), r.band);
                 }
-                for (int l = n; l < kLanes; ++l) ends.ends[static_cast<size_t>(l)] = &subs[0];  // not used
                 w.queue(child, packets, ends);
                 w.walk_lanes(packets, ends, lost);
                 for (int l = 0; l < n; ++l) {
                     w.add_losses(lost, l);
-                    sum += tinted(ctx_.weights[static_cast<size_t>(refracted[i0 + static_cast<size_t>(l)].first)],
+                    sum += tinted(ctx_.weights[static_cast<size_t>(rays[i0 + static_cast<size_t>(l)].band)],
                                   subs[static_cast<size_t>(l)].sum);
                 }
                 stats_.wavelength_segments += stats_.segments - before;
@@ -289,9 +281,10 @@ private:
             // band that meets TIR: traced once with the sum of their weights.
             Vec3 mirror_weight(0, 0, 0);
             std::optional<Branch> mirror;  // POV-Ray mode: natural light, no Mueller matrix
-            if (packets()) {
-                pov_bands_in_packets(w, e, h, bands, first, sum, mirror, mirror_weight);
-            } else for (const int k : bands) {
+            // Each band's interaction, in band order: the mirror bands' weights summed, the
+            // others' refracted rays walked (in packets, or one by one).
+            std::vector<BandRay> refracted;
+            for (const int k : bands) {
                 const size_t kb = static_cast<size_t>(k);
                 const Interaction bn = k == bands[0] ? first : tracer_.interact(h, e.ray, stats_, ctx_.index[kb][mi], true);
                 if (bn.split_mirror) {
@@ -299,15 +292,22 @@ private:
                     mirror_weight += ctx_.weights[kb];
                     continue;
                 }
-                const std::uint64_t before = stats_.segments;
-                Acc band;
-                w.own_losses([&] {
-                    List list;
-                    w.push(e, h, bn, 1, true, list, Vec3(1, 1, 1), k);
-                    band = subwalk(w, list);
-                });
-                sum += tinted(ctx_.weights[kb], band);
-                stats_.wavelength_segments += stats_.segments - before;
+                refracted.push_back(BandRay{k, bn.branch[1]});
+            }
+            if (packets()) {
+                pov_bands_in_packets(w, e, h, refracted, sum);
+            } else {
+                for (const BandRay& r : refracted) {
+                    const std::uint64_t before = stats_.segments;
+                    Acc band;
+                    w.own_losses([&] {
+                        List list;
+                        w.push(e, h, r.branch, polar::Mueller::Identity(), true, list, Vec3(1, 1, 1), r.band);
+                        band = subwalk(w, list);
+                    });
+                    sum += tinted(ctx_.weights[static_cast<size_t>(r.band)], band);
+                    stats_.wavelength_segments += stats_.segments - before;
+                }
             }
             if (mirror) {
                 List list;
