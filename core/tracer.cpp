@@ -379,9 +379,8 @@ LaneMask SceneTracer::escaping_lanes(const LaneIds& object, const LaneVec3& orig
                                      const LaneMask& active, RenderStats& stats) const {
     if (order_.size() != 1 || !std::holds_alternative<Sphere>(order_[0]->shape)) return LaneMask::Constant(false);
     const Sphere& s = std::get<Sphere>(order_[0]->shape);
-    LaneMask from = active;
-    for (int l = 0; l < kLanes; ++l) from[l] = from[l] && object[static_cast<size_t>(l)] >= 0;
-    const LaneMask gone = from && ((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));
+    LaneMask gone = active && ((origin - LaneVec3::broadcast(s.center)).dot(dir) > Lanes(0.0));
+    for (int l = 0; l < kLanes; ++l) gone[l] = gone[l] && object[static_cast<size_t>(l)] >= 0;
     stats.segments += static_cast<std::uint64_t>(gone.count());
     return gone;
 }

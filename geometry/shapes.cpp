@@ -33,7 +33,7 @@ __attribute__((flatten)) LaneShapeHits intersect_lanes(const Sphere& s, const La
     const LaneVec3 centre = LaneVec3::broadcast(s.center);
     const auto [b, disc] = sphere_quadratic<LaneVec3>(origin - centre, dir, Lanes(s.radius));
     LaneShapeHits h;
-    const LaneMask ask = active && !(leaving && (b > Lanes(0.0)));
+    const LaneMask ask = leaving.any() ? active && !(leaving && (b > Lanes(0.0))) : active;
     if (!ask.any()) {
         h.hit = ask;
         return h;
