@@ -19,13 +19,26 @@ public:
     }
     double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
 
-    Vec3 unit_vector() {  // uniform on the sphere
-        const double z = 2.0 * uniform() - 1.0;
-        const double phi = 2.0 * M_PI * uniform();
-        const double r = std::sqrt(std::fmax(0.0, 1.0 - z * z));
-        return {r * std::cos(phi), r * std::sin(phi), z};
+    // Uniform on the unit sphere (Marsaglia 1972): (u, v) uniform in the unit disk by
+    // rejection from the square, then (2u√(1−s), 2v√(1−s), 1 − 2s) with s = u² + v²; no
+    // trigonometry.
+    Vec3 unit_vector() {
+        for (;;) {
+            const double u = 2.0 * uniform() - 1.0, v = 2.0 * uniform() - 1.0;
+            const double s = u * u + v * v;
+            if (s >= 1.0 || s == 0.0) continue;
+            const double w = 2.0 * std::sqrt(1.0 - s);
+            return {u * w, v * w, 1.0 - 2.0 * s};
+        }
     }
-    Vec3 in_unit_sphere() { return unit_vector() * std::cbrt(uniform()); }
+    // Uniform in the unit ball: by rejection from the cube [−1, 1)³ (RTIOW's
+    // random_in_unit_sphere).
+    Vec3 in_unit_sphere() {
+        for (;;) {
+            const Vec3 p(2.0 * uniform() - 1.0, 2.0 * uniform() - 1.0, 2.0 * uniform() - 1.0);
+            if (p.squaredNorm() < 1.0) return p;
+        }
+    }
 
 private:
     static std::uint64_t mix(std::uint64_t z) {

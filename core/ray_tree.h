@@ -310,9 +310,7 @@ public:
         const RenderSettings& settings = tracer_.settings();
         const bool natural = settings.polarisation != PolarisationModel::Exact;
         const bool pov = settings.compat == Compat::PovRay;
-        int first = -1;
-        for (int l = kLanes - 1; l >= 0; --l)
-            if (at[l]) first = l;
+        const int first = at.first();
         const Material* m0 = &tracer_.scene().materials[h.object[static_cast<size_t>(first)]->material];
         const auto* d = m0->dielectric();
         // POV-Ray mode: band rays (no split here) in an interior without fading.
@@ -446,9 +444,7 @@ private:
     __attribute__((flatten)) void node_lanes(const LaneEntry& p, const LaneMask& m, const SceneTracer::LaneHits& h, const Material& mat,
                     const material::Dielectric& d, LaneEntry (&child)[2], LaneEnds& ends, LaneLosses& lost) {
         stats_.tree_nodes += static_cast<std::uint64_t>(m.count());
-        int first = -1;
-        for (int l = kLanes - 1; l >= 0; --l)
-            if (m[l]) first = l;
+        const int first = m.first();
         // Each lane's index at its band (the ends' band_ior, a function of the band and the
         // material), kept for the next node in the same material with the same bands.
         std::array<std::int16_t, kLanes> bands;

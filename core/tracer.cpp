@@ -307,9 +307,7 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
             GuessCache& cache = guess_cache;
             if (cache.owner != id_) cache.reset(id_, facet_ids_);
             while (todo.any()) {
-                int first = -1;
-                for (int l = kLanes - 1; l >= 0; --l)
-                    if (todo[l]) first = l;
+                const int first = todo.first();
                 const int f = from_facet[static_cast<size_t>(first)];
                 const size_t id = static_cast<size_t>(facet_base_[k] + f);
                 LaneMask local;
@@ -353,9 +351,7 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
                         keep(l, k, Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(g)].normal, g});
                     }
                     local = local && !decided;
-                    int u = -1;
-                    for (int l = kLanes - 1; l >= 0; --l)
-                        if (local[l]) u = l;
+                    const int u = local.first();
                     if (u < 0) break;
                     full(u);
                     local[u] = false;

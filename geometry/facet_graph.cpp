@@ -160,6 +160,7 @@ FacetGraph::FacetGraph(const ConvexPolyhedron& c) {
         closed.push_back(static_cast<std::int32_t>(g));
         while (closed.size() % 8 != 0) closed.push_back(static_cast<std::int32_t>(g));
         Block& b = blocks_[g];
+        b.neighbours = neighbours_[g].size();
         for (const std::int32_t k : closed) {
             const Plane& p = c.planes[static_cast<size_t>(k)];
             b.nx.push_back(p.normal.x());
@@ -208,7 +209,9 @@ FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r,
     return out;
 }
 
-FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& v,
+// The packet's arithmetic vectorised for AVX-512F, AVX2 or the baseline, chosen at load time
+// (target clones; no contraction into FMA in this file, so every variant gives the same bits).
+[[gnu::target_clones("avx512f", "avx2", "default")]] FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& v,
                                                    const LaneMask& active, double t_min, const Lanes& t_max, int from,
                                                    const std::array<std::int32_t, kLanes>& guess) const {
     LocalLanes out;
@@ -265,13 +268,16 @@ FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, co
         mask[l] = cand[l] ? 1 : 0;
         bad[l] = 0;
     }
-    const auto test = [&](int f, const std::int64_t* m) {
+    // The lanes of m against the first n planes of f's block (vectorised over the lanes: no
+    // padding).
+    const auto test = [&](int f, size_t n, const std::int64_t* m) {
         const Block& b = blocks_[static_cast<size_t>(f)];
-        contradicts_lanes(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), b.nx.size(), o.x.v, o.y.v,
-                          o.z.v, v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m, bad);
+        contradicts_lanes(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), n, o.x.v, o.y.v, o.z.v,
+                          v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m, bad);
     };
-    test(from, mask);
-    // Each guess's block, for the lanes that took it.
+    test(from, blocks_[static_cast<size_t>(from)].neighbours + 1, mask);
+    // Each guess's block, for the lanes that took it: its neighbours (g's own plane gives
+    // t_g itself, the same arithmetic, which never contradicts it).
     std::int64_t done[kLanes] = {};
     for (int l = 0; l < kLanes; ++l) {
         if (!mask[l] || done[l]) continue;
@@ -281,7 +287,7 @@ FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, co
             same[k] = mask[k] && !done[k] && guess[static_cast<size_t>(k)] == g ? 1 : 0;
             done[k] |= same[k];
         }
-        test(g, same);
+        test(g, blocks_[static_cast<size_t>(g)].neighbours, same);
     }
     for (int l = 0; l < kLanes; ++l) {
         if (!mask[l] || bad[l]) continue;

@@ -77,9 +77,12 @@ public:
 
 private:
     std::vector<std::vector<std::int32_t>> neighbours_;
-    // Per facet: its plane and its neighbours', by coordinate, with their indices in c.
+    // Per facet: its neighbours' planes and its own (in this order, then copies of its own
+    // up to a multiple of 8 for the test vectorised over planes), by coordinate, with their
+    // indices in c; `neighbours` of them are its neighbours'.
     struct Block {
         std::vector<double> nx, ny, nz, d, index;
+        size_t neighbours = 0;
     };
     std::vector<Block> blocks_;
     std::vector<double> gap_;

@@ -22,41 +22,61 @@ namespace refract {
 
 constexpr int kLanes = 8;
 
+// Which lanes of a packet a statement applies to: one bit per lane (lane i: bit i), so that
+// the tests, the combinations and the counts of a packet step are single instructions.
 template <int W>
 struct LaneMaskT {
+    static_assert(W <= 32, "one bit per lane");
     static constexpr int kLanes = W;
-    bool m[W];
+    static constexpr std::uint32_t kAll = W == 32 ? ~0u : (1u << W) - 1u;
+    std::uint32_t bits = 0;
+
+    // Lane i of a mask, to read or set.
+    class Lane {
+    public:
+        REFRACT_LANE_OP Lane(std::uint32_t& bits, std::uint32_t bit) : bits_(bits), bit_(bit) {}
+        REFRACT_LANE_OP operator bool() const { return (bits_ & bit_) != 0; }
+        REFRACT_LANE_OP Lane& operator=(bool b) {
+            bits_ = b ? (bits_ | bit_) : (bits_ & ~bit_);
+            return *this;
+        }
+        REFRACT_LANE_OP Lane& operator=(const Lane& o) { return *this = static_cast<bool>(o); }
+
+    private:
+        std::uint32_t& bits_;
+        std::uint32_t bit_;
+    };
 
     static REFRACT_LANE_OP LaneMaskT Constant(bool b) {
         LaneMaskT r;
-        for (int i = 0; i < kLanes; ++i) r.m[i] = b;
+        r.bits = b ? kAll : 0u;
         return r;
     }
-    REFRACT_LANE_OP bool operator[](int i) const { return m[i]; }
-    REFRACT_LANE_OP bool& operator[](int i) { return m[i]; }
-    REFRACT_LANE_OP bool any() const {
-        bool a = false;
-        for (int i = 0; i < kLanes; ++i) a = a || m[i];
-        return a;
+    REFRACT_LANE_OP bool operator[](int i) const { return ((bits >> i) & 1u) != 0; }
+    REFRACT_LANE_OP Lane operator[](int i) { return Lane(bits, 1u << i); }
+    REFRACT_LANE_OP bool any() const { return bits != 0; }
+    REFRACT_LANE_OP int count() const {  // the set bits, summed in place (no library call)
+        std::uint32_t x = bits;
+        x = x - ((x >> 1) & 0x55555555u);
+        x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+        x = (x + (x >> 4)) & 0x0F0F0F0Fu;
+        return static_cast<int>((x * 0x01010101u) >> 24);
     }
-    REFRACT_LANE_OP int count() const {
-        int n = 0;
-        for (int i = 0; i < kLanes; ++i) n += m[i] ? 1 : 0;
-        return n;
-    }
+    // The first lane set (-1: none).
+    REFRACT_LANE_OP int first() const { return bits ? __builtin_ctz(bits) : -1; }
     friend REFRACT_LANE_OP LaneMaskT operator&&(const LaneMaskT& a, const LaneMaskT& b) {
         LaneMaskT r;
-        for (int i = 0; i < kLanes; ++i) r.m[i] = a.m[i] && b.m[i];
+        r.bits = a.bits & b.bits;
         return r;
     }
     friend REFRACT_LANE_OP LaneMaskT operator||(const LaneMaskT& a, const LaneMaskT& b) {
         LaneMaskT r;
-        for (int i = 0; i < kLanes; ++i) r.m[i] = a.m[i] || b.m[i];
+        r.bits = a.bits | b.bits;
         return r;
     }
     friend REFRACT_LANE_OP LaneMaskT operator!(const LaneMaskT& a) {
         LaneMaskT r;
-        for (int i = 0; i < kLanes; ++i) r.m[i] = !a.m[i];
+        r.bits = ~a.bits & kAll;
         return r;
     }
 };
@@ -84,15 +104,33 @@ struct LanesT {
     REFRACT_LANE_BINARY(*)
     REFRACT_LANE_BINARY(/)
 #undef REFRACT_LANE_BINARY
-#define REFRACT_LANE_COMPARE(op)                                                        \
+#if defined(__SSE2__)
+    // Two lanes a step: the packed comparison (false where either is NaN, as the scalar
+    // operator), its two sign bits into the mask.
+#define REFRACT_LANE_COMPARE(op, packed)                                                     \
+    friend REFRACT_LANE_OP LaneMaskT<W> operator op(const LanesT& a, const LanesT& b) {      \
+        static_assert(W % 2 == 0, "lanes in pairs");                                          \
+        LaneMaskT<W> r;                                                                       \
+        for (int i = 0; i < kLanes; i += 2)                                                   \
+            r.bits |= static_cast<std::uint32_t>(                                             \
+                          _mm_movemask_pd(packed(_mm_load_pd(a.v + i), _mm_load_pd(b.v + i)))) \
+                      << i;                                                                   \
+        return r;                                                                             \
+    }
+    REFRACT_LANE_COMPARE(<, _mm_cmplt_pd)
+    REFRACT_LANE_COMPARE(>, _mm_cmpgt_pd)
+    REFRACT_LANE_COMPARE(>=, _mm_cmpge_pd)
+#else
+#define REFRACT_LANE_COMPARE(op, packed)                                                \
     friend REFRACT_LANE_OP LaneMaskT<W> operator op(const LanesT& a, const LanesT& b) { \
         LaneMaskT<W> r;                                                                    \
-        for (int i = 0; i < kLanes; ++i) r.m[i] = a.v[i] op b.v[i];                     \
+        for (int i = 0; i < kLanes; ++i) r.bits |= static_cast<std::uint32_t>(a.v[i] op b.v[i]) << i; \
         return r;                                                                       \
     }
-    REFRACT_LANE_COMPARE(<)
-    REFRACT_LANE_COMPARE(>)
-    REFRACT_LANE_COMPARE(>=)
+    REFRACT_LANE_COMPARE(<, _)
+    REFRACT_LANE_COMPARE(>, _)
+    REFRACT_LANE_COMPARE(>=, _)
+#endif
 #undef REFRACT_LANE_COMPARE
     friend REFRACT_LANE_OP LanesT operator-(const LanesT& a) {
         LanesT r;
@@ -131,10 +169,20 @@ struct LanesT {
     }
 };
 
+// m ? a : b in every lane (bit for bit: a blend).
 template <int W>
 REFRACT_LANE_OP LanesT<W> select(const LaneMaskT<W>& m, const LanesT<W>& a, const LanesT<W>& b) {
     LanesT<W> r;
-    for (int i = 0; i < kLanes; ++i) r.v[i] = m.m[i] ? a.v[i] : b.v[i];
+#if defined(__SSE2__)
+    // The blend mask of a pair of lanes from its two bits.
+    alignas(16) static constexpr std::int64_t kPair[4][2] = {{0, 0}, {-1, 0}, {0, -1}, {-1, -1}};
+    for (int i = 0; i < W; i += 2) {
+        const __m128d k = _mm_load_pd(reinterpret_cast<const double*>(kPair[(m.bits >> i) & 3u]));
+        _mm_store_pd(r.v + i, _mm_or_pd(_mm_and_pd(k, _mm_load_pd(a.v + i)), _mm_andnot_pd(k, _mm_load_pd(b.v + i))));
+    }
+#else
+    for (int i = 0; i < W; ++i) r.v[i] = m[i] ? a.v[i] : b.v[i];
+#endif
     return r;
 }
 

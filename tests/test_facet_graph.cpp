@@ -338,6 +338,69 @@ TEST_CASE("Facet-local intersection of a packet of rays leaving one facet equals
     CHECK(mismatches == 0);
 }
 
+TEST_CASE("Facet-local intersection of packets aimed at the brilliant's corners and edges equals the one-ray answer",
+          "[geometry]") {
+    // Packets leaving facet hits towards the corners and edge midpoints of the facets, where
+    // the leaving planes' t are equal or within rounding of each other (ties broken by the
+    // smaller index), each lane with the right guess, a random one or none, a window
+    // starting at 1e-6 or at 0.
+    const Gem gem = build_brilliant(BrilliantCut{});
+    ConvexPolyhedron c = gem.solid;
+    set_bound(c, gem.mesh.vertices);
+    const FacetGraph g(c);
+    std::mt19937_64 rng(9);
+    std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
+    long lanes = 0, decided = 0, mismatches = 0;
+    std::vector<Vec3> targets;
+    for (const GemFacet& f : gem.facets)
+        for (size_t i = 0; i < f.polygon.size(); ++i) {
+            targets.push_back(f.polygon[i]);
+            targets.push_back(0.5 * (f.polygon[i] + f.polygon[(i + 1) % f.polygon.size()]));
+        }
+    for (size_t i = 0; i < 4 * targets.size(); ++i) {
+        const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
+        const Vec3 to = c.bound_center + 0.5 * c.bound_radius * random_direction(rng);
+        const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
+        if (!hit || !g.usable(hit->facet)) continue;
+        const double t_min = i % 3 == 0 ? 0.0 : 1e-6;
+        LaneVec3 o, d;
+        Lanes t_max;
+        LaneMask active = LaneMask::Constant(true);
+        std::array<std::int32_t, kLanes> guess;
+        for (int l = 0; l < kLanes; ++l) {
+            const Vec3& at = targets[(i + static_cast<size_t>(l) * 7) % targets.size()];
+            Vec3 dir = (at - hit->point).normalized();
+            if (l >= 4) dir = (dir + 1e-13 * random_direction(rng)).normalized();  // beside it
+            o.set(l, hit->point);
+            d.set(l, dir);
+            t_max[l] = kInf;
+            const auto want = intersect(c, Ray{hit->point, dir}, t_min, kInf);
+            guess[static_cast<size_t>(l)] = l % 3 == 2 ? -1 : l % 3 == 0 && want ? want->facet : any(rng);
+        }
+        const FacetGraph::LocalLanes loc = g.intersect_lanes(c, o, d, active, t_min, t_max, hit->facet, guess);
+        for (int l = 0; l < kLanes; ++l) {
+            ++lanes;
+            const Ray r{o.lane(l), d.lane(l)};
+            const FacetGraph::Local one = g.intersect(c, r, t_min, kInf, hit->facet, guess[static_cast<size_t>(l)]);
+            if (loc.decided[l] != one.decided) {
+                ++mismatches;
+                continue;
+            }
+            if (!one.decided) continue;
+            ++decided;
+            std::optional<Hit> got;
+            if (loc.hit[l])
+                got = Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(loc.facet[static_cast<size_t>(l)])].normal,
+                          loc.facet[static_cast<size_t>(l)]};
+            mismatches += !identical(got, one.hit) || !identical(got, intersect(c, r, t_min, kInf));
+        }
+    }
+    INFO(lanes << " lanes, " << decided << " decided locally");
+    CHECK(lanes > 5000);
+    CHECK(decided > lanes / 4);
+    CHECK(mismatches == 0);
+}
+
 TEST_CASE("The plane test on a packet of rays equals the one-ray test in every lane, bit for bit", "[geometry]") {
     std::mt19937_64 rng(13);
     std::uniform_real_distribution<double> u(-2, 2);

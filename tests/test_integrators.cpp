@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/optics.h"
+#include "core/random.h"
 #include "core/render.h"
 #include "core/scene_json.h"
 
@@ -132,6 +133,42 @@ TEST_CASE("Images are identical for 1 and 2 threads", "[determinism]") {
         CHECK(r1.image.rgb == r2.image.rgb);
         CHECK(r1.stats.segments == r2.stats.segments);
     }
+}
+
+TEST_CASE("Sampling: Marsaglia's unit vectors are uniform on the sphere, cube rejection uniform in the ball",
+          "[rtiow][stochastic][sampling]") {
+    Rng rng(5, 11);
+    const int n = 200000;
+    Vec3 mean = Vec3::Zero(), second = Vec3::Zero();
+    int cap = 0;
+    double worst = 0;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 v = rng.unit_vector();
+        worst = std::max(worst, std::abs(v.norm() - 1.0));
+        mean += v;
+        second += v.cwiseProduct(v);
+        cap += v.z() > 0.5 ? 1 : 0;
+    }
+    mean /= n;
+    second /= n;
+    CHECK(worst < 1e-15);
+    // E[x] = 0, E[x^2] = 1/3 per axis; Archimedes: the cap z > 1/2 holds a quarter of the
+    // sphere. Standard errors: 1.3e-3 (mean), 6.7e-4 (second moment), 9.7e-4 (cap).
+    CHECK(mean.cwiseAbs().maxCoeff() < 0.008);
+    CHECK((second - Vec3::Constant(1.0 / 3.0)).cwiseAbs().maxCoeff() < 0.004);
+    CHECK(std::abs(cap / double(n) - 0.25) < 0.006);
+    // In the ball: |p| < 1, E[|p|^2] = 3/5, and P(|p| < 1/2) = 1/8.
+    double r2 = 0, largest = 0;
+    int inner = 0;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 p = rng.in_unit_sphere();
+        largest = std::max(largest, p.norm());
+        r2 += p.squaredNorm();
+        inner += p.norm() < 0.5 ? 1 : 0;
+    }
+    CHECK(largest < 1.0);
+    CHECK(std::abs(r2 / n - 0.6) < 0.004);  // standard error 5.6e-4
+    CHECK(std::abs(inner / double(n) - 0.125) < 0.005);  // standard error 7.4e-4
 }
 
 TEST_CASE("Stochastic reflect/refract choice converges to the tree's value", "[rtiow][stochastic]") {
