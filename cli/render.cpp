@@ -43,11 +43,11 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
                   "Intersect every ray leaving a gem facet with all of the gem's planes, not the planes around "
                   "the facet (the same image, slower; for comparison)");
     sub->add_flag("--no-lanes", args->no_lanes,
-                  "Walk the wavelengths of a spectral split one by one instead of in packets of 8 (the same "
-                  "image to the last bit, slower; for comparison)");
+                  "Walk the wavelengths of a spectral split and the samples of a pixel (stochastic) one by one "
+                  "instead of in packets of 8 (the same image to the last bit, slower; for comparison)");
     sub->callback([args] {
         if (args->full_plane_loop) refract::SceneTracer::set_facet_local(false);
-        if (args->no_lanes) refract::SceneTracer::set_wavelength_lanes(false);
+        if (args->no_lanes) refract::SceneTracer::set_lanes(false);
         refract::check_image_path(args->output);  // before the work, not after it
         const refract::Scene scene = refract::load_scene(args->scene);
         refract::RenderOptions opt;

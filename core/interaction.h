@@ -135,25 +135,47 @@ struct DielectricNode {
     S transmit_bailout;          // its largest component
 };
 
+// What a dielectric node's branches depend on: cos θi, cos θt by Snell's law (empty: total
+// internal reflection) and the reflectance R (1 on total internal reflection, whatever the
+// model: a constant ks too, Whitted's Fig. 9).
+template <class S>
+struct DielectricTerms {
+    S cos_i;
+    std::optional<S> cos_t;
+    S R;
+};
 template <class V>
-DielectricNode<V> dielectric_node(const V& dir, const V& normal, typename V::Scalar eta, ReflectanceModel model,
-                                  typename V::Scalar constant, const V& filter) {
+DielectricTerms<typename V::Scalar> dielectric_terms(const V& dir, const V& normal, typename V::Scalar eta,
+                                                     ReflectanceModel model, typename V::Scalar constant) {
     using S = typename V::Scalar;
     namespace gen = optics::generic;
     const S cos_i = gen::cos_incident(dir, normal);
     const std::optional<S> cos_t = gen::cos_transmitted(cos_i, eta);  // Snell's law, once
-    // On total internal reflection all light goes the mirror way, whatever the model
-    // (a constant ks too, Whitted's Fig. 9).
-    const S R = cos_t ? dielectric_reflectance(model, constant, cos_i, cos_t, eta) : S(1.0);
-    // Rays are unit length by convention: renormalise, or the rounding error of |dir|
-    // grows about tenfold per bounce in a chain of internal reflections (the sphere
-    // intersection assumes |dir| = 1, so the hit leaves the surface and the next normal
-    // is off), and after ~10 bounces the path is wrong.
-    DielectricNode<V> n{gen::reflect(dir, normal).normalized(), std::nullopt, R, V(), S(0.0)};
-    if (cos_t) {
-        n.transmit_factor = (S(1.0) - R) * filter;
+    return {cos_i, cos_t, cos_t ? dielectric_reflectance(model, constant, cos_i, cos_t, eta) : S(1.0)};
+}
+// The node's two directions, unit length. Rays are unit length by convention: renormalise,
+// or the rounding error of |dir| grows about tenfold per bounce in a chain of internal
+// reflections (the sphere intersection assumes |dir| = 1, so the hit leaves the surface and
+// the next normal is off), and after ~10 bounces the path is wrong.
+template <class V>
+V reflected_unit(const V& dir, const V& normal) {
+    return optics::generic::reflect(dir, normal).normalized();
+}
+template <class V>
+V refracted_unit(const V& dir, const V& normal, const DielectricTerms<typename V::Scalar>& t, typename V::Scalar eta) {
+    return optics::generic::refracted_direction(dir, normal, t.cos_i, *t.cos_t, eta).normalized();
+}
+
+template <class V>
+DielectricNode<V> dielectric_node(const V& dir, const V& normal, typename V::Scalar eta, ReflectanceModel model,
+                                  typename V::Scalar constant, const V& filter) {
+    using S = typename V::Scalar;
+    const DielectricTerms<S> t = dielectric_terms(dir, normal, eta, model, constant);
+    DielectricNode<V> n{reflected_unit(dir, normal), std::nullopt, t.R, V(), S(0.0)};
+    if (t.cos_t) {
+        n.transmit_factor = (S(1.0) - t.R) * filter;
         n.transmit_bailout = n.transmit_factor.maxCoeff();
-        n.refracted = gen::refracted_direction(dir, normal, cos_i, *cos_t, eta).normalized();
+        n.refracted = refracted_unit(dir, normal, t, eta);
     }
     return n;
 }
@@ -202,6 +224,10 @@ struct Scatter {
 // `pigment` is the Lambertian's albedo at the hit. Empty optional: absorbed.
 std::optional<Scatter> scatter(const material::Lambertian& m, const Vec3& pigment, const SurfaceHit& h, Rng& rng);
 std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
+// RTIOW's dielectric in the physical mode: reflection with probability R, else refraction
+// (the filter colour), the throughput unweighted by R; the node's R and directions
+// (dielectric_node), the chosen one alone computed. `ior`: the index inside.
+Scatter scatter(const material::Dielectric& m, double ior, const SurfaceHit& h, const Ray& ray, Rng& rng);
 // One branch of an interaction chosen at random (RTIOW's dielectric: reflection with
 // probability R, else refraction, the throughput unweighted by R; a mirror's single
 // branch with its colour factor).

@@ -81,7 +81,7 @@ struct PhotonEnds {
         const size_t mi = static_cast<size_t>(h.object->material);
         if (e.band >= 0 || !ctx.dispersive[mi]) return false;
         if constexpr (std::is_same_v<P, NaturalLight>) {
-            if (SceneTracer::wavelength_lanes() && w.tracer().lanes_apply()) {
+            if (SceneTracer::lanes() && w.tracer().lanes_apply()) {
                 split_in_packets(w, e, h, mi);
                 return true;
             }

@@ -103,10 +103,10 @@ S fresnel_reflectance(S cos_i, S eta) {
 // RTIOW: R(θ) = R0 + (1 − R0)(1 − cos θ)^5, R0 = ((1 − η)/(1 + η))².
 template <class S>
 S schlick(S cos, S eta) {
-    using std::pow;
     const S r0 = (S(1.0) - eta) / (S(1.0) + eta);
     const S R0 = r0 * r0;
-    return R0 + (S(1.0) - R0) * pow(S(1.0) - cos, 5);
+    const S x = S(1.0) - cos, x2 = x * x;
+    return R0 + (S(1.0) - R0) * (x2 * x2 * x);  // (1 − cos)^5 by three products
 }
 
 template <class V>

@@ -10,6 +10,7 @@ namespace refract {
 
 class Rng {
 public:
+    Rng() = default;  // a placeholder, to be assigned a stream (arrays of generators)
     Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t sub = 0)
         : state_(mix(seed ^ mix(stream + 0x9E3779B97F4A7C15ull) ^ mix(sub * 0xD1B54A32D192ED03ull + 1))) {}
 
@@ -46,7 +47,7 @@ private:
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    std::uint64_t state_;
+    std::uint64_t state_ = 0;
 };
 
 }  // namespace refract

@@ -147,6 +147,20 @@ Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, co
     const RenderSettings& s = scene.settings;
     const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
     Vec3 sum(0, 0, 0);
+    if (!spectral && s.integrator == IntegratorKind::Stochastic && SceneTracer::lanes()) {
+        // The samples' paths kLanes at a time, summed in sample order (the same sum).
+        thread_local std::vector<Vec3> values;
+        stochastic_radiance_samples(
+            tracer, s.samples,
+            [&](int k, Rng& rng) {
+                rng = Rng(s.seed, pixel, static_cast<std::uint64_t>(k));
+                ++stats.primary_rays;
+                return sample_ray(tracer, i, j, rng);
+            },
+            values, stats);
+        for (const Vec3& v : values) sum += v;
+        return Vec3(sum / s.samples);
+    }
     for (int k = 0; k < s.samples; ++k) {
         Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
         const Ray ray = sample_ray(tracer, i, j, rng);

@@ -40,6 +40,29 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
         facet_base_[k] = static_cast<std::int32_t>(facet_ids_);
         facet_ids_ += c->planes.size();
     }
+    // The spheres tested together, outside the BVH (shadow rays: those that cast shadows).
+    const auto group = [&](bool shadows) {
+        std::optional<SphereGroup> g;
+        g.emplace();
+        g->index.assign(order_.size(), SIZE_MAX);
+        for (size_t k = 0; k < order_.size(); ++k) {
+            const auto* s = std::get_if<Sphere>(&order_[k]->shape);
+            if (shadows && scene.materials[order_[k]->material].is<material::Emissive>()) continue;
+            if (!s) {
+                g->rest.push_back(k);
+                continue;
+            }
+            g->index[k] = g->set.size();
+            g->order.push_back(k);
+            g->set.add(*s);
+        }
+        if (g->set.size() < kMinSphereSet) g.reset();
+        return g;
+    };
+    if (order_.size() < kBvhMinObjects) {
+        spheres_ = group(false);
+        shadow_spheres_ = group(true);
+    }
     static std::atomic<std::uint64_t> tracers{0};
     id_ = ++tracers;
     if (order_.size() >= kBvhMinObjects) {
@@ -66,7 +89,7 @@ std::optional<Hit> SceneTracer::intersect_object(size_t k, const Ray& ray, doubl
 namespace {
 
 std::atomic<bool> facet_local_on{true};
-std::atomic<bool> wavelength_lanes_on{true};
+std::atomic<bool> lanes_on{true};
 
 // The guesses of one thread for one tracer: per starting facet, the last few directions
 // that left it (in single precision: they only choose a guess) and the facet each left
@@ -120,8 +143,8 @@ thread_local GuessCache guess_cache;
 
 void SceneTracer::set_facet_local(bool on) { facet_local_on.store(on, std::memory_order_relaxed); }
 bool SceneTracer::facet_local() { return facet_local_on.load(std::memory_order_relaxed); }
-void SceneTracer::set_wavelength_lanes(bool on) { wavelength_lanes_on.store(on, std::memory_order_relaxed); }
-bool SceneTracer::wavelength_lanes() { return wavelength_lanes_on.load(std::memory_order_relaxed); }
+void SceneTracer::set_lanes(bool on) { lanes_on.store(on, std::memory_order_relaxed); }
+bool SceneTracer::lanes() { return lanes_on.load(std::memory_order_relaxed); }
 
 std::optional<Hit> SceneTracer::intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
                                                RenderStats& stats) const {
@@ -152,11 +175,29 @@ std::optional<Hit> SceneTracer::intersect_from(size_t k, int from_facet, const R
 
 template <class Use>
 std::optional<SceneTracer::Nearest> SceneTracer::nearest(const Ray& ray, double t_min, double t_max, Use&& use,
-                                                         size_t from_k, int from_facet, RenderStats* stats) const {
+                                                         size_t from_k, int from_facet, RenderStats* stats,
+                                                         const SphereGroup* group) const {
     std::optional<Nearest> best;
     const auto ask = [&](size_t k, double lo, double hi) {
         return k == from_k ? intersect_from(k, from_facet, ray, lo, hi, *stats) : intersect_object(k, ray, lo, hi);
     };
+    if (!bvh_ && group) {
+        // The spheres together, then the rest in order, each asked for hits up to and
+        // including the best t when listed before the best object, strictly nearer when
+        // after: the in-order search's answer, exact ties included.
+        const size_t leaving = from_k < group->index.size() ? group->index[from_k] : SIZE_MAX;
+        if (const auto s = group->set.nearest(ray, t_min, t_max, leaving))
+            best = Nearest{sphere_hit(group->set.sphere(s->index), ray, s->t), group->order[s->index]};
+        for (const size_t k : group->rest) {
+            if (!use(k)) continue;
+            const double limit = !best ? t_max
+                                 : k < best->k ? std::nextafter(best->hit.t, std::numeric_limits<double>::infinity())
+                                               : best->hit.t;
+            const auto hit = ask(k, t_min, limit);
+            if (hit) best = Nearest{*hit, k};
+        }
+        return best;
+    }
     if (!bvh_) {
         // In order: a hit replaces the best one only when strictly nearer.
         for (size_t k = 0; k < order_.size(); ++k) {
@@ -192,7 +233,8 @@ std::optional<SurfaceHit> SceneTracer::intersect(const Ray& ray, RenderStats& st
     const double t_min = pov ? kPovMinDepth : kEpsilon;
     const double t_max = pov ? kPovMaxDistance : std::numeric_limits<double>::infinity();
     const size_t from_k = from.object >= 0 ? order_of_[static_cast<size_t>(from.object)] : SIZE_MAX;
-    if (const auto n = nearest(ray, t_min, t_max, [](size_t) { return true; }, from_k, from.facet, &stats)) {
+    if (const auto n = nearest(ray, t_min, t_max, [](size_t) { return true; }, from_k, from.facet, &stats,
+                               spheres_ ? &*spheres_ : nullptr)) {
         const Object& obj = *order_[n->k];
         best = SurfaceHit{n->hit, &obj, &scene_.materials[obj.material], n->hit.normal, true};
     }
@@ -243,9 +285,14 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
         from_k[i] = active[static_cast<int>(i)] && from_object[i] >= 0 ? order_of_[static_cast<size_t>(from_object[i])]
                                                                        : SIZE_MAX;
     LaneVec3 outward;
+    // Per lane, the order_ index of the best object so far (SIZE_MAX: none).
+    std::array<size_t, kLanes> best_k;
+    best_k.fill(SIZE_MAX);
     // A hit of object k in the lanes of `m` (t, point, outward normal; facet -1).
     const auto take = [&](size_t k, const LaneMask& m, const LaneShapeHits& h) {
         if (!m.any()) return;
+        for (int l = 0; l < kLanes; ++l)
+            if (m[l]) best_k[static_cast<size_t>(l)] = k;
         best = select(m, h.t, best);
         if (out.hit.any()) {
             out.point = select(m, h.point, out.point);
@@ -264,6 +311,7 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
     // Lane l's nearest hit so far: h, on object k.
     const auto keep = [&](int l, size_t k, const Hit& h) {
         const size_t i = static_cast<size_t>(l);
+        best_k[i] = k;
         best[l] = h.t;
         out.point.set(l, h.point);
         outward.set(l, h.normal);
@@ -271,27 +319,65 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
         out.object[i] = order_[k];
         out.facet[i] = h.facet;
     };
+    // The spheres together first (the group's lane search), then the other objects in
+    // order, each lane asking object k for hits up to and including its best t when k
+    // comes before its best object, strictly nearer when after (nearest()'s rule).
+    const SphereGroup* group = spheres_ ? &*spheres_ : nullptr;
+    if (group) {
+        std::array<std::int32_t, kLanes> leaving;
+        for (size_t i = 0; i < leaving.size(); ++i)
+            leaving[i] = from_k[i] < group->index.size() && group->index[from_k[i]] != SIZE_MAX
+                             ? static_cast<std::int32_t>(group->index[from_k[i]])
+                             : -1;
+        SphereSet::LaneHits sh;
+        sh.best = best;
+        sh.index.fill(-1);
+        group->set.nearest_lanes(origin, dir, active, t_min, leaving, sh);
+        if (sh.hit.any()) {
+            best = sh.best;
+            out.point = sh.point;
+            outward = sh.normal;
+            out.hit = sh.hit;
+            for (int l = 0; l < kLanes; ++l) {
+                if (!sh.hit[l]) continue;
+                const size_t i = static_cast<size_t>(l);
+                best_k[i] = group->order[static_cast<size_t>(sh.index[i])];
+                out.object[i] = order_[best_k[i]];
+            }
+        }
+    }
+    const auto limit = [&](size_t k) {
+        if (!group) return best;
+        Lanes lim = best;
+        for (int l = 0; l < kLanes; ++l)
+            if (best_k[static_cast<size_t>(l)] != SIZE_MAX && k < best_k[static_cast<size_t>(l)])
+                lim[l] = std::nextafter(best[l], std::numeric_limits<double>::infinity());
+        return lim;
+    };
     // Object k asked for lane l alone, as nearest() asks it.
-    const auto one = [&](size_t k, int l) {
+    const auto one = [&](size_t k, int l, double hi) {
         const size_t i = static_cast<size_t>(l);
         const Ray r{origin.lane(l), dir.lane(l)};
-        const auto h = from_k[i] == k ? intersect_from(k, from_facet[i], r, t_min, best[l], stats)
-                                      : intersect_object(k, r, t_min, best[l]);
+        const auto h = from_k[i] == k ? intersect_from(k, from_facet[i], r, t_min, hi, stats)
+                                      : intersect_object(k, r, t_min, hi);
         if (h) keep(l, k, *h);
     };
     // In order, as nearest(): a hit replaces the best one only when strictly nearer.
-    for (size_t k = 0; k < order_.size(); ++k) {
+    const size_t n_objects = group ? group->rest.size() : order_.size();
+    for (size_t r = 0; r < n_objects; ++r) {
+        const size_t k = group ? group->rest[r] : r;
+        const Lanes lim = limit(k);
         LaneMask leaving;
         for (int l = 0; l < kLanes; ++l) leaving[l] = active[l] && from_k[static_cast<size_t>(l)] == k;
         const Shape& shape = order_[k]->shape;
         if (const auto* s = std::get_if<Sphere>(&shape)) {
             // The sphere the rays leave: none for those moving away from its centre (intersect_from).
-            const LaneShapeHits h = refract::intersect_lanes(*s, origin, dir, active, t_min, best, leaving);
+            const LaneShapeHits h = refract::intersect_lanes(*s, origin, dir, active, t_min, lim, leaving);
             take(k, h.hit, h);
             continue;
         }
         if (const auto* p = std::get_if<Plane>(&shape)) {
-            const LaneShapeHits h = refract::intersect_lanes(*p, origin, dir, active, t_min, best);
+            const LaneShapeHits h = refract::intersect_lanes(*p, origin, dir, active, t_min, lim);
             take(k, h.hit, h);
             continue;
         }
@@ -320,7 +406,7 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
                 const auto full = [&](int l) {
                     ++stats.facet_full;
                     const Ray r{origin.lane(l), dir.lane(l)};
-                    const auto hit = intersect_object(k, r, t_min, best[l]);
+                    const auto hit = intersect_object(k, r, t_min, lim[l]);
                     if (!hit) return;
                     cache.store(id, r.dir, hit->facet, 0, false);
                     keep(l, k, *hit);
@@ -341,7 +427,7 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
                         guess[static_cast<size_t>(l)] = g;
                         slot[static_cast<size_t>(l)] = sl;
                     }
-                    const FacetGraph::LocalLanes loc = graph->intersect_lanes(c, origin, dir, local, t_min, best, f, guess);
+                    const FacetGraph::LocalLanes loc = graph->intersect_lanes(c, origin, dir, local, t_min, lim, f, guess);
                     const LaneMask decided = local && loc.decided;
                     stats.facet_local += static_cast<std::uint64_t>(decided.count());
                     for (int l = 0; l < kLanes; ++l) {
@@ -360,7 +446,7 @@ SceneTracer::LaneHits SceneTracer::intersect_lanes(const LaneVec3& origin, const
             }
         }
         for (int l = 0; l < kLanes; ++l)
-            if (rest[l]) one(k, l);
+            if (rest[l]) one(k, l, lim[l]);
     }
     out.t = best;
     if (!out.hit.any()) return out;
@@ -437,9 +523,9 @@ Vec3 SceneTracer::light_transmittance(const Vec3& from, const Vec3& to, RenderSt
     const Vec3 delta = to - from;
     const double dist = delta.norm();
     const Ray ray{from, delta / dist};
-    const auto blocker = nearest(ray, kEpsilon, dist, [&](size_t k) {
-        return !scene_.materials[order_[k]->material].is<material::Emissive>();
-    });
+    const auto blocker = nearest(
+        ray, kEpsilon, dist, [&](size_t k) { return !scene_.materials[order_[k]->material].is<material::Emissive>(); },
+        SIZE_MAX, -1, nullptr, shadow_spheres_ ? &*shadow_spheres_ : nullptr);
     return blocker ? Vec3(0, 0, 0) : Vec3(1, 1, 1);
 }
 
@@ -460,7 +546,7 @@ Vec3 SceneTracer::light_transmittance_pov(const Vec3& from, const Vec3& to, Rend
         const auto n = nearest(
             ray, kPovShadowTolerance, remaining,
             [&](size_t k) { return !scene_.materials[order_[k]->material].is<material::Emissive>(); }, from_k, from_facet,
-            &stats);
+            &stats, shadow_spheres_ ? &*shadow_spheres_ : nullptr);
         if (!n || n->hit.t >= remaining - kPovShadowTolerance) return t;
         const Hit* best = &n->hit;
         const Material* best_m = &scene_.materials[order_[n->k]->material];

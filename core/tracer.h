@@ -10,6 +10,7 @@
 #include "geometry/facet_graph.h"
 #include "geometry/mesh_accel.h"
 #include "geometry/object_bvh.h"
+#include "geometry/sphere_set.h"
 
 #include "core/interaction.h"
 #include "core/render.h"
@@ -72,11 +73,12 @@ public:
     // tests and benchmarks compare the two).
     static void set_facet_local(bool on);
     static bool facet_local();
-    // Wavelength packets (RayTreeWalkerT::walk_lanes) in the spectral eye pass and the light
-    // pass, for every tracer of the process (on by default; off: the bands one by one, the
-    // same images to the last bit).
-    static void set_wavelength_lanes(bool on);
-    static bool wavelength_lanes();
+    // Packets of rays (geometry/lanes.h) for every tracer of the process: the wavelength
+    // bands of a split in the spectral eye pass and the light pass (RayTreeWalkerT::walk_lanes),
+    // the samples of a pixel in the stochastic integrator (stochastic_radiance_lanes). On by
+    // default; off: one ray at a time, the same images to the last bit.
+    static void set_lanes(bool on);
+    static bool lanes();
     // Whether this scene's band rays can be walked in packets: natural light, and no uniaxial
     // crystal (whose o and e waves the packets do not carry).
     bool lanes_apply() const { return lanes_apply_; }
@@ -136,9 +138,19 @@ private:
     };
     // `from_k`, `from_facet`: the order_ entry and facet the ray leaves (-1: none), asked
     // through intersect_from.
+    // The spheres of a search tested together (geometry/sphere_set.h), the other objects one
+    // by one: order_ index of each sphere of `set`, its index in `set` per order_ entry
+    // (SIZE_MAX: none) and the order_ indices of the rest, in order.
+    struct SphereGroup {
+        SphereSet set;
+        std::vector<std::size_t> order, index, rest;
+    };
+    // `group`: the spheres to test together (those for which `use` holds; null or too few:
+    // every object one by one). Outside the object BVH.
     template <class Use>
     std::optional<Nearest> nearest(const Ray& ray, double t_min, double t_max, Use&& use, std::size_t from_k = SIZE_MAX,
-                                   int from_facet = -1, RenderStats* stats = nullptr) const;
+                                   int from_facet = -1, RenderStats* stats = nullptr,
+                                   const SphereGroup* group = nullptr) const;
     std::optional<Hit> intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const;
     // The same for the object the ray leaves, from its facet `from_facet` (a sphere: none
     // when the ray moves away from its centre).
@@ -152,6 +164,10 @@ private:
     std::vector<const Object*> order_;
     std::vector<std::unique_ptr<MeshAccel>> mesh_accel_;  // per entry of order_, null when unused
     std::optional<ObjectBvh> bvh_;                         // over order_'s indices
+    // The spheres tested together (from kMinSphereSet of them, without the BVH): all of them
+    // for intersect(), those that cast shadows for the shadow rays.
+    static constexpr std::size_t kMinSphereSet = 2;
+    std::optional<SphereGroup> spheres_, shadow_spheres_;
     std::vector<std::unique_ptr<FacetGraph>> facet_graph_;  // per entry of order_: bounded plane sets
     std::vector<std::int32_t> facet_base_;                  // per entry of order_: first id in the guess cache
     std::vector<std::size_t> order_of_;                     // Scene::objects index → order_ index

@@ -20,6 +20,10 @@ std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double
         t = -b + sq;
         if (!(t > t_min && t < t_max)) return std::nullopt;
     }
+    return sphere_hit(s, r, t);
+}
+
+Hit sphere_hit(const Sphere& s, const Ray& r, double t) {
     Hit h;
     h.t = t;
     h.point = r.at(t);

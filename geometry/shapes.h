@@ -58,6 +58,9 @@ bool misses_bound(const ConvexPolyhedron& c, const Ray& r);
 using Shape = std::variant<Sphere, Plane, TriangleMesh, ConvexPolyhedron>;
 
 std::optional<Hit> intersect(const Sphere& s, const Ray& r, double t_min, double t_max);
+// The hit of ray r on sphere s at its root t: point, outward normal (the sphere test's own,
+// shared with the sphere set, geometry/sphere_set.h).
+Hit sphere_hit(const Sphere& s, const Ray& r, double t);
 
 // The sphere's quadratic |o + t d − c|² = ρ² for |d| = 1, oc = o − c, in half-b form
 // t² + 2 b t + c = 0: b and the discriminant b² − c (no hit where it is negative). Over the

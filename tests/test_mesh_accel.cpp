@@ -1,7 +1,8 @@
 // The search structures against the linear searches they replace: Embree's BVH for a
 // triangle mesh (geometry/mesh_accel.h, refined in double) against the Möller–Trumbore
 // loop, and the BVH over objects (geometry/object_bvh.h, used by SceneTracer from
-// kBvhMinObjects objects) against the in-order nearest-hit loop, ties included.
+// kBvhMinObjects objects) against the in-order nearest-hit loop, ties included, and the
+// spheres tested together (geometry/sphere_set.h) against the same loop, bit for bit.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -14,6 +15,9 @@
 #include "geometry/icosphere.h"
 #include "geometry/mesh_accel.h"
 #include "geometry/object_bvh.h"
+#include "geometry/sphere_set.h"
+
+#include "hit_bits.h"
 
 using namespace refract;
 
@@ -133,6 +137,96 @@ TEST_CASE("Object BVH: the in-order nearest-hit search's object and t, exact tie
     }
     CHECK(hits > 10000);
     CHECK(ties > 50);  // the coincident copies were met, and the first one kept
+}
+
+TEST_CASE("Sphere set: the in-order nearest-hit search's object, t, point and normal to the last bit, exact ties to "
+          "the object first in order",
+          "[geometry][spheres]") {
+    // 40 spheres (hollow ones among them), coincident copies, a plane and a mesh between
+    // them in the list, and a plane set: below the BVH's threshold, so the tracer tests the
+    // spheres together and the rest one by one. Rays from random points, and rays leaving
+    // a sphere's surface (reflected and refracted directions alike: random).
+    Scene s;
+    s.materials.push_back({"white", material::Diffuse{}});
+    std::mt19937_64 g(11);
+    std::uniform_real_distribution<double> u(-4, 4), rad(0.2, 1.5), sign(0, 1);
+    for (int k = 0; k < 40; ++k) {
+        const double r = rad(g) * (sign(g) < 0.2 ? -1 : 1);
+        s.objects.push_back({"s" + std::to_string(k), Sphere{Vec3(u(g), u(g), u(g)), r}, 0});
+        if (k == 10) s.objects.push_back({"floor", Plane{Vec3(0, 1, 0), -3.9}, 0});
+        if (k == 20) s.objects.push_back({"ball", icosphere(2, Vec3(0.5, 0.5, 0.5), 1.2), 0});
+    }
+    for (int k = 0; k < 40; k += 9) s.objects.push_back({"copy", s.objects[static_cast<size_t>(k)].shape, 0});
+    s.objects.push_back({"mirror", Plane{Vec3(0, 0, 1), 3.5}, 0});
+    REQUIRE(s.objects.size() < SceneTracer::kBvhMinObjects);
+    const SceneTracer tracer(s);
+    RenderStats st;
+    long hits = 0, ties = 0, leaving = 0, mismatches = 0;
+    for (int n = 0; n < 40000; ++n) {
+        Ray r{Vec3(u(g), u(g), u(g)), test::random_direction(g)};
+        RayOrigin from;
+        if (n % 2 == 1) {  // from the surface of a sphere this ray meets
+            const auto h = tracer.intersect(r, st);
+            if (!h || !std::holds_alternative<Sphere>(h->object->shape)) continue;
+            from = tracer.origin_of(*h);
+            r = Ray{h->hit.point, test::random_direction(g)};
+            ++leaving;
+        }
+        // The search it replaces: in scene order, strictly nearer replaces; a ray leaving a
+        // sphere away from its centre skips it.
+        std::optional<Hit> best;
+        int best_k = -1, at_best = 0;
+        double t_max = kInf;
+        for (size_t k = 0; k < s.objects.size(); ++k) {
+            const auto* sp = std::get_if<Sphere>(&s.objects[k].shape);
+            if (static_cast<int>(k) == from.object && sp && (r.origin - sp->center).dot(r.dir) > 0) continue;
+            if (const auto h = intersect(s.objects[k].shape, r, SceneTracer::kEpsilon, t_max)) {
+                t_max = h->t;
+                best = h;
+                best_k = static_cast<int>(k);
+            }
+        }
+        const auto b = tracer.intersect(r, st, from);
+        if (best)
+            for (const Object& obj : s.objects) {
+                const auto h = intersect(obj.shape, r, SceneTracer::kEpsilon, kInf);
+                at_best += h && h->t == best->t;
+            }
+        hits += best.has_value();
+        ties += at_best > 1;
+        const std::optional<Hit> got = b ? std::optional<Hit>(b->hit) : std::nullopt;
+        mismatches += !test::identical(got, best) || (b && b->object != &s.objects[static_cast<size_t>(best_k)]);
+    }
+    INFO(hits << " hits, " << ties << " exact ties, " << leaving << " rays leaving a sphere");
+    CHECK(hits > 20000);
+    CHECK(ties > 100);
+    CHECK(leaving > 5000);
+    CHECK(mismatches == 0);
+    // The set alone against each sphere's own test, on rays through many of them.
+    SphereSet set;
+    std::vector<Sphere> list;
+    for (int k = 0; k < 70; ++k) {  // more than one block of 8, more than the stack's 64
+        list.push_back(Sphere{Vec3(u(g), u(g), u(g)), rad(g)});
+        set.add(list.back());
+    }
+    for (int n = 0; n < 20000; ++n) {
+        const Ray r{Vec3(u(g), u(g), u(g)), test::random_direction(g)};
+        const double t_min = n % 3 == 0 ? 0.0 : 1e-6, t_max = n % 5 == 0 ? 2.0 : kInf;
+        std::optional<Hit> best;
+        size_t best_k = SIZE_MAX;
+        double hi = t_max;
+        for (size_t k = 0; k < list.size(); ++k)
+            if (const auto h = intersect(list[k], r, t_min, hi)) {
+                hi = h->t;
+                best = h;
+                best_k = k;
+            }
+        const auto got = set.nearest(r, t_min, t_max);
+        REQUIRE(got.has_value() == best.has_value());
+        if (!got) continue;
+        REQUIRE(got->index == best_k);
+        REQUIRE(test::identical(sphere_hit(list[got->index], r, got->t), best));
+    }
 }
 
 TEST_CASE("A convex polyhedron as a mesh (mesh_of, for POV-Ray's mesh2) is the same solid: hits agree",

@@ -49,7 +49,7 @@ Vec3 book_ray_color(const SceneTracer& t, const Ray& r, int depth, Rng& rng, Ren
     if (!hit) return t.background(r.dir);
     const Interaction n = t.interact(*hit, r, st);
     const bool reflect = n.branches == 1 || rng.uniform() < n.reflectance;
-    const Ray scattered{hit->hit.point, n.branch[reflect ? 0 : 1].ray.dir.normalized()};
+    const Ray scattered{hit->hit.point, n.branch[reflect ? 0 : 1].ray.dir};  // unit already
     return book_ray_color(t, scattered, depth - 1, rng, st);
 }
 

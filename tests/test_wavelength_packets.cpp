@@ -1,6 +1,7 @@
-// Wavelength packets (RayTreeWalkerT::walk_lanes): the bands of a spectral split walked
-// eight at a time in the eye pass and the light pass give the images, the lost light and the
-// illumination maps of the bands walked one by one, to the last bit. (The packet tests of
+// Packets of rays: the bands of a spectral split walked eight at a time in the eye pass and
+// the light pass (RayTreeWalkerT::walk_lanes), and the samples of a pixel in the stochastic
+// integrator (stochastic_radiance_samples), give the images, the lost light and the
+// illumination maps of the rays walked one by one, to the last bit. (The packet tests of
 // spheres, planes and a plane set's facets: test_facet_graph.cpp.)
 #include <catch2/catch.hpp>
 
@@ -33,9 +34,9 @@ Pair render_both(const Scene& s) {
     o.threads = 2;
     o.lost_energy = true;
     Pair p;
-    SceneTracer::set_wavelength_lanes(false);
+    SceneTracer::set_lanes(false);
     p.one_by_one = render(s, o);
-    SceneTracer::set_wavelength_lanes(true);
+    SceneTracer::set_lanes(true);
     p.lanes = render(s, o);
     for (int j = 0; j < s.camera.height; ++j)
         for (int i = 0; i < s.camera.width; ++i)
@@ -65,9 +66,9 @@ TEST_CASE("Ohtsuka & Kawai 1998 diamond: light pass and eye pass with the wavele
 
     // The illumination maps themselves.
     const SpectralContext ctx = SpectralContext::build(s);
-    SceneTracer::set_wavelength_lanes(false);
+    SceneTracer::set_lanes(false);
     const auto one = light_pass(s, ctx, 2);
-    SceneTracer::set_wavelength_lanes(true);
+    SceneTracer::set_lanes(true);
     const auto lanes = light_pass(s, ctx, 2);
     long elements = 0, differing = 0;
     for (size_t k = 0; k < one->by_object.size(); ++k) {
@@ -127,6 +128,43 @@ TEST_CASE("Dispersive spheres, a mesh, absorbing glass, a mirror and a Schlick d
     const Pair p = render_both(s);
     CHECK(p.lanes.stats.spectral_splits > 100);
     CHECK(p.lanes.stats.segments == p.one_by_one.stats.segments);
+    CHECK(p.image_bits == 0);
+    CHECK(p.lost_bits == 0);
+}
+
+TEST_CASE("Stochastic (RTIOW): the samples of a pixel walked in packets give the one-by-one image to the last bit",
+          "[render][rtiow][stochastic]") {
+    // The chapter's kinds (Lambertian, fuzzy metal, a hollow Schlick glass sphere) with an
+    // absorbing glass, a plane, a mesh and coincident spheres: the spheres are searched as a
+    // set and the plane and the mesh one by one in the same packet, exact ties included; a
+    // path that ends hands its lane to the next sample.
+    const Scene s = parse_scene(nlohmann::json::parse(R"({
+        "camera": {"location": [0, 0.4, -3], "look_at": [0, 0.1, 0], "angle": 60, "width": 40, "height": 30},
+        "materials": {
+            "ground": {"type": "lambertian", "color": [0.8, 0.8, 0.0]},
+            "centre": {"type": "lambertian", "color": [0.1, 0.2, 0.5]},
+            "metal": {"type": "metal", "color": [0.8, 0.6, 0.2], "fuzz": 0.3},
+            "glass": {"type": "dielectric", "ior": 1.5, "reflectance": "schlick"},
+            "amber": {"type": "dielectric", "ior": 1.54, "absorption": {"coefficients": [0.1, 0.6, 1.5]}},
+            "floor": {"type": "lambertian", "color": [0.5, 0.5, 0.5]}},
+        "objects": [
+            {"type": "sphere", "center": [0, -100.5, 1], "radius": 100, "material": "ground"},
+            {"type": "sphere", "center": [0, 0, 1], "radius": 0.5, "material": "centre"},
+            {"type": "sphere", "center": [0, 0, 1], "radius": 0.5, "material": "metal"},
+            {"type": "sphere", "center": [-1, 0, 1], "radius": 0.5, "material": "glass"},
+            {"type": "sphere", "center": [-1, 0, 1], "radius": -0.45, "material": "glass"},
+            {"type": "sphere", "center": [1, 0, 1], "radius": 0.5, "material": "metal"},
+            {"type": "plane", "normal": [0, 0, -1], "offset": -4, "material": "floor"},
+            {"type": "mesh", "vertices": [[0.3, -0.5, 0], [0.9, -0.5, 0], [0.6, 0.2, 0.3], [0.6, -0.5, -0.4]],
+             "triangles": [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]], "material": "amber"}],
+        "background": {"type": "gradient", "bottom": [1, 1, 1], "top": [0.5, 0.7, 1]},
+        "render": {"integrator": "stochastic", "samples": 21, "max_depth": 12, "jitter": true, "seed": 3}})"),
+                                "stochastic.json");
+    const Pair p = render_both(s);
+    CHECK(p.lanes.stats.primary_rays == 40 * 30 * 21);
+    CHECK(p.lanes.stats.segments == p.one_by_one.stats.segments);
+    CHECK(p.lanes.stats.segments > 2 * p.lanes.stats.primary_rays);
+    CHECK(p.lanes.stats.depth_limited == p.one_by_one.stats.depth_limited);
     CHECK(p.image_bits == 0);
     CHECK(p.lost_bits == 0);
 }

@@ -190,7 +190,7 @@ private:
 
     // Whether the bands of a split are walked in packets (RayTreeWalkerT::walk_lanes).
     bool packets() const {
-        return std::is_same_v<P, NaturalLight> && SceneTracer::wavelength_lanes() && tracer_.lanes_apply();
+        return std::is_same_v<P, NaturalLight> && SceneTracer::lanes() && tracer_.lanes_apply();
     }
 
     // The subtrees below hit h at `bands`, walked kLanes bands at a time: band_tree() of each,
