@@ -183,8 +183,10 @@ Scatter scatter(const material::Dielectric& m, double ior, const SurfaceHit& h, 
     const double eta = h.entering ? ior : 1.0 / ior;
     const DielectricTerms<double> t = dielectric_terms(ray.dir, h.normal, eta, m.reflectance, m.constant_reflectivity);
     // Two branches (as dielectric_physical spawns them) only where light is transmitted.
-    if (t.cos_t && t.R < 1.0 && !(rng.uniform() < t.R)) return Scatter{refracted_unit(ray.dir, h.normal, t, eta), m.filter};
-    return Scatter{reflected_unit(ray.dir, h.normal), Vec3(1, 1, 1)};
+    namespace gen = optics::generic;
+    if (t.cos_t && t.R < 1.0 && !(rng.uniform() < t.R))
+        return Scatter{gen::refracted_direction(ray.dir, h.normal, t.cos_i, *t.cos_t, eta), m.filter};
+    return Scatter{gen::reflect(ray.dir, h.normal), Vec3(1, 1, 1)};
 }
 
 std::optional<Scatter> sample_branch(const Material& m, const Interaction& in, Rng& rng) {

@@ -225,8 +225,9 @@ struct Scatter {
 std::optional<Scatter> scatter(const material::Lambertian& m, const Vec3& pigment, const SurfaceHit& h, Rng& rng);
 std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
 // RTIOW's dielectric in the physical mode: reflection with probability R, else refraction
-// (the filter colour), the throughput unweighted by R; the node's R and directions
-// (dielectric_node), the chosen one alone computed. `ior`: the index inside.
+// (the filter colour), the throughput unweighted by R; the node's R (dielectric_node), the
+// chosen direction alone computed. `ior`: the index inside. Like the other kinds' scatters,
+// the direction is left for the caller to normalise (normalised, it is dielectric_node's).
 Scatter scatter(const material::Dielectric& m, double ior, const SurfaceHit& h, const Ray& ray, Rng& rng);
 // One branch of an interaction chosen at random (RTIOW's dielectric: reflection with
 // probability R, else refraction, the throughput unweighted by R; a mirror's single

@@ -40,8 +40,8 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
         const double dist = d[i] - ((nx[i] * ox + ny[i] * oy) + nz[i] * oz);
         const double t = dist / denom;
         const bool entering = denom < 0, leaving = denom > 0;
-        const bool parallel = !(entering | leaving), enters_late = !(t <= t_min),
-                   leaves_early = !(t >= t_g) | ((t == t_g) & (index[i] < g));
+        const bool parallel = !(entering | leaving), enters_late = !(t <= t_min), before_g = !(t >= t_g),
+                   leaves_early = before_g | ((t == t_g) & (index[i] < g));
         bad |= static_cast<int>(parallel | (entering & enters_late) | (leaving & leaves_early));
     }
     return bad != 0;
@@ -62,8 +62,8 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
             const double dist = d[i] - ((nx[i] * ox[l] + ny[i] * oy[l]) + nz[i] * oz[l]);
             const double t = dist / denom;
             const bool entering = denom < 0, leaving = denom > 0;
-            const bool parallel = !(entering | leaving), enters_late = !(t <= t_min),
-                       leaves_early = !(t >= t_g[l]) | ((t == t_g[l]) & (index[i] < g[l]));
+            const bool parallel = !(entering | leaving), enters_late = !(t <= t_min), before_g = !(t >= t_g[l]),
+                       leaves_early = before_g | ((t == t_g[l]) & (index[i] < g[l]));
             b[l] |= static_cast<std::int64_t>(parallel | (entering & enters_late) | (leaving & leaves_early));
         }
     }

@@ -1,6 +1,7 @@
 // A list of spheres tested together (see sphere_set.h).
 #include "geometry/sphere_set.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -73,7 +74,17 @@ using RootsFn = void (*)(REFRACT_ROOTS_ARGS);
 #if defined(__x86_64__)
 void roots_baseline(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(2, _mm_sqrt_pd) }
 __attribute__((target("avx2"))) void roots_avx2(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(4, _mm256_sqrt_pd) }
+// GCC 12's avx512fintrin.h initialises some results from themselves (__m512d __Y = __Y),
+// which -Wmaybe-uninitialized reports wherever they are inlined.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 __attribute__((target("avx512f"))) void roots_avx512f(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(8, _mm512_sqrt_pd) }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 #else
 Doubles<2>::type sqrt2(Doubles<2>::type v) { return Doubles<2>::type{std::sqrt(v[0]), std::sqrt(v[1])}; }
 void roots_baseline(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(2, sqrt2) }
@@ -171,32 +182,61 @@ using LanesFn = std::uint32_t (*)(REFRACT_LANES_ARGS);
 #if defined(__x86_64__)
 std::uint32_t lanes_baseline(REFRACT_LANES_ARGS) { REFRACT_SPHERE_LANES(__m128d, _mm_sqrt_pd) }
 __attribute__((target("avx2"))) std::uint32_t lanes_avx2(REFRACT_LANES_ARGS) { REFRACT_SPHERE_LANES(__m256d, _mm256_sqrt_pd) }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 __attribute__((target("avx512f"))) std::uint32_t lanes_avx512f(REFRACT_LANES_ARGS) {
     REFRACT_SPHERE_LANES(__m512d, _mm512_sqrt_pd)
 }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 #else
 std::uint32_t lanes_baseline(REFRACT_LANES_ARGS) { REFRACT_SPHERE_LANES(double, std::sqrt) }
 #endif
 #undef REFRACT_SPHERE_LANES
 #undef REFRACT_LANES_ARGS
 
-LanesFn lanes_function() {
+LanesFn lanes_function(SlabIsa isa) {
 #if defined(__x86_64__)
-    if (slab_isa() == SlabIsa::avx512f) return lanes_avx512f;
-    if (slab_isa() == SlabIsa::avx2) return lanes_avx2;
+    if (!slab_isa_supported(isa)) return lanes_baseline;
+    if (isa == SlabIsa::avx512f) return lanes_avx512f;
+    if (isa == SlabIsa::avx2) return lanes_avx2;
 #endif
     return lanes_baseline;
 }
 
-RootsFn roots_function() {
+RootsFn roots_function(SlabIsa isa) {
 #if defined(__x86_64__)
-    if (slab_isa() == SlabIsa::avx512f) return roots_avx512f;
-    if (slab_isa() == SlabIsa::avx2) return roots_avx2;
+    if (!slab_isa_supported(isa)) return roots_baseline;
+    if (isa == SlabIsa::avx512f) return roots_avx512f;
+    if (isa == SlabIsa::avx2) return roots_avx2;
 #endif
     return roots_baseline;
 }
 
+// The variants in use: the best the CPU runs, or the one a test asked for.
+std::atomic<RootsFn> roots_in_use{nullptr};
+std::atomic<LanesFn> lanes_in_use{nullptr};
+RootsFn roots_fn() {
+    RootsFn f = roots_in_use.load(std::memory_order_relaxed);
+    if (!f) roots_in_use.store(f = roots_function(slab_isa()), std::memory_order_relaxed);
+    return f;
+}
+LanesFn lanes_fn() {
+    LanesFn f = lanes_in_use.load(std::memory_order_relaxed);
+    if (!f) lanes_in_use.store(f = lanes_function(slab_isa()), std::memory_order_relaxed);
+    return f;
+}
+
 }  // namespace
+
+void SphereSet::use_isa(SlabIsa isa) {
+    roots_in_use.store(roots_function(isa), std::memory_order_relaxed);
+    lanes_in_use.store(lanes_function(isa), std::memory_order_relaxed);
+}
 
 void SphereSet::add(const Sphere& s) {
     const std::size_t n = spheres_.size();
@@ -229,8 +269,7 @@ std::optional<SphereSet::Nearest> SphereSet::nearest(const Ray& r, double t_min,
         t = heap.data();
         b = t + n;
     }
-    static const RootsFn roots = roots_function();
-    roots(cx_.data(), cy_.data(), cz_.data(), r2_.data(), n, r, t_min, t_max, t, b);
+    roots_fn()(cx_.data(), cy_.data(), cz_.data(), r2_.data(), n, r, t_min, t_max, t, b);
     if (leaving < spheres_.size() && b[leaving] > 0) t[leaving] = kInf;
     // The first sphere attaining the smallest t (strictly smaller replaces: list order wins
     // ties, as the scalar search that narrows its window to the best t so far).
@@ -253,8 +292,7 @@ void SphereSet::nearest_lanes(const LaneVec3& origin, const LaneVec3& dir, const
         idx[l] = io.index[static_cast<std::size_t>(l)];
         leave[l] = leaving[static_cast<std::size_t>(l)];
     }
-    static const LanesFn search = lanes_function();
-    io.hit.bits = search(cx_.data(), cy_.data(), cz_.data(), r2_.data(), spheres_.size(), r_.data(), origin, dir,
+    io.hit.bits = lanes_fn()(cx_.data(), cy_.data(), cz_.data(), r2_.data(), spheres_.size(), r_.data(), origin, dir,
                          active.bits, t_min, io.best.v, idx, leave, point, normal);
     for (int l = 0; l < kLanes; ++l) io.index[static_cast<std::size_t>(l)] = static_cast<std::int32_t>(idx[l]);
     if (!io.hit.any()) return;

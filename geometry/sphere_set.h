@@ -7,7 +7,7 @@
 // The answer is that of intersect(const Sphere&, ...) asked of each sphere in list order
 // with the window narrowed to the best t so far, bit for bit: the same operations in the
 // same order for b, c, the discriminant and the roots (sphere_quadratic; the file is
-// compiled without contraction into FMA), the nearer root when it lies in the window, else
+// compiled without contraction into FMA, so every variant gives the same bits), the nearer root when it lies in the window, else
 // the farther one, and on equal t the sphere listed first. A negative discriminant gives a
 // NaN root, which no window accepts, as the scalar test's early miss.
 #include <array>
@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/plane_set.h"
 #include "geometry/shapes.h"
 
 namespace refract {
@@ -22,6 +23,9 @@ namespace refract {
 class SphereSet {
 public:
     SphereSet() = default;
+    // Every sphere set of the process from now on runs this variant (an unsupported one:
+    // the baseline); by default the best the CPU runs (tests compare the variants).
+    static void use_isa(SlabIsa isa);
     void add(const Sphere& s);
     std::size_t size() const { return spheres_.size(); }
     const Sphere& sphere(std::size_t i) const { return spheres_[i]; }

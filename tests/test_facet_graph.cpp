@@ -22,6 +22,7 @@
 #include "core/scene_json.h"
 #include "core/tracer.h"
 #include "geometry/facet_graph.h"
+#include "geometry/lanes_wide.h"
 #include "geometry/gem/brilliant.h"
 #include "geometry/shapes.h"
 #include "tests/hit_bits.h"
@@ -430,4 +431,36 @@ TEST_CASE("The plane test on a packet of rays equals the one-ray test in every l
     CHECK(compared > 70000);
     CHECK(hits > compared / 4);
     CHECK(mismatches == 0);
+}
+
+TEST_CASE("Normalising a packet on the widest instructions equals Eigen's normalized() in every lane, bit for bit",
+          "[geometry]") {
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(-3, 3), scale(-30, 30);
+    for (const SlabIsa isa : {SlabIsa::baseline, SlabIsa::avx2, SlabIsa::avx512f}) {
+        if (!slab_isa_supported(isa)) continue;
+        INFO(slab_isa_name(isa));
+        use_wide_isa(isa);
+        long lanes = 0, mismatches = 0;
+        for (int n = 0; n < 20000; ++n) {
+            LaneVec3 v;
+            LaneMask m;
+            for (int l = 0; l < kLanes; ++l) {
+                Vec3 x = std::ldexp(1.0, static_cast<int>(scale(rng))) * Vec3(u(rng), u(rng), u(rng));
+                if ((n + l) % 97 == 0) x = Vec3::Zero();  // stays as it is
+                v.set(l, x);
+                m[l] = (n + l) % 5 != 0;
+            }
+            const LaneVec3 before = v;
+            normalize_lanes(v, m);
+            for (int l = 0; l < kLanes; ++l) {
+                ++lanes;
+                const Vec3 want = m[l] ? Vec3(before.lane(l).normalized()) : before.lane(l);
+                for (int c = 0; c < 3; ++c) mismatches += test::bits(v.lane(l)[c]) != test::bits(want[c]);
+            }
+        }
+        CHECK(lanes == 160000);
+        CHECK(mismatches == 0);
+    }
+    use_wide_isa(slab_isa());
 }

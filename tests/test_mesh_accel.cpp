@@ -202,31 +202,85 @@ TEST_CASE("Sphere set: the in-order nearest-hit search's object, t, point and no
     CHECK(ties > 100);
     CHECK(leaving > 5000);
     CHECK(mismatches == 0);
-    // The set alone against each sphere's own test, on rays through many of them.
+    // The set alone against each sphere's own test, on rays through many of them, one ray
+    // and packets of eight (each lane its own window and starting sphere), under every
+    // variant this CPU runs.
     SphereSet set;
     std::vector<Sphere> list;
     for (int k = 0; k < 70; ++k) {  // more than one block of 8, more than the stack's 64
-        list.push_back(Sphere{Vec3(u(g), u(g), u(g)), rad(g)});
+        list.push_back(Sphere{Vec3(u(g), u(g), u(g)), rad(g) * (k % 5 == 0 ? -1 : 1)});
         set.add(list.back());
     }
-    for (int n = 0; n < 20000; ++n) {
-        const Ray r{Vec3(u(g), u(g), u(g)), test::random_direction(g)};
-        const double t_min = n % 3 == 0 ? 0.0 : 1e-6, t_max = n % 5 == 0 ? 2.0 : kInf;
+    // The in-order search with the sphere `from` skipped when the ray leaves its centre.
+    const auto reference = [&](const Ray& r, double t_min, double t_max, int from) {
         std::optional<Hit> best;
-        size_t best_k = SIZE_MAX;
-        double hi = t_max;
-        for (size_t k = 0; k < list.size(); ++k)
-            if (const auto h = intersect(list[k], r, t_min, hi)) {
-                hi = h->t;
+        int best_k = -1;
+        for (size_t k = 0; k < list.size(); ++k) {
+            if (static_cast<int>(k) == from && (r.origin - list[k].center).dot(r.dir) > 0) continue;
+            if (const auto h = intersect(list[k], r, t_min, t_max)) {
+                t_max = h->t;
                 best = h;
-                best_k = k;
+                best_k = static_cast<int>(k);
             }
-        const auto got = set.nearest(r, t_min, t_max);
-        REQUIRE(got.has_value() == best.has_value());
-        if (!got) continue;
-        REQUIRE(got->index == best_k);
-        REQUIRE(test::identical(sphere_hit(list[got->index], r, got->t), best));
+        }
+        return std::make_pair(best, best_k);
+    };
+    for (const SlabIsa isa : {SlabIsa::baseline, SlabIsa::avx2, SlabIsa::avx512f}) {
+        if (!slab_isa_supported(isa)) continue;
+        INFO(slab_isa_name(isa));
+        SphereSet::use_isa(isa);
+        long set_mismatches = 0, lane_mismatches = 0, lane_hits = 0;
+        for (int n = 0; n < 4000; ++n) {
+            const Ray r{Vec3(u(g), u(g), u(g)), test::random_direction(g)};
+            const double t_min = n % 3 == 0 ? 0.0 : 1e-6, t_max = n % 5 == 0 ? 2.0 : kInf;
+            const auto [best, best_k] = reference(r, t_min, t_max, -1);
+            const auto got = set.nearest(r, t_min, t_max);
+            set_mismatches += got.has_value() != best.has_value() ||
+                              (got && (static_cast<int>(got->index) != best_k ||
+                                       !test::identical(sphere_hit(list[got->index], r, got->t), best)));
+            // A packet: lanes from random points and from sphere surfaces, some inactive.
+            LaneVec3 o, d;
+            LaneMask active;
+            SphereSet::LaneHits io;
+            std::array<std::int32_t, kLanes> from;
+            std::array<Ray, kLanes> rays;
+            for (int l = 0; l < kLanes; ++l) {
+                const size_t i = static_cast<size_t>(l);
+                rays[i] = Ray{Vec3(u(g), u(g), u(g)), test::random_direction(g)};
+                from[i] = -1;
+                if (l % 2 == 1 && best) {  // from the first ray's hit, in a random direction
+                    rays[i] = Ray{best->point, test::random_direction(g)};
+                    from[i] = best_k;
+                }
+                o.set(l, rays[i].origin);
+                d.set(l, rays[i].dir);
+                active[l] = (n + l) % 7 != 0;
+                io.best[l] = l % 3 == 0 ? 3.0 : kInf;
+                io.index[i] = -1;
+            }
+            set.nearest_lanes(o, d, active, t_min, from, io);
+            for (int l = 0; l < kLanes; ++l) {
+                const size_t i = static_cast<size_t>(l);
+                if (!active[l]) {
+                    lane_mismatches += io.hit[l];
+                    continue;
+                }
+                const auto [want, want_k] = reference(rays[i], t_min, l % 3 == 0 ? 3.0 : kInf, from[i]);
+                if (io.hit[l] != want.has_value()) {
+                    ++lane_mismatches;
+                    continue;
+                }
+                if (!want) continue;
+                ++lane_hits;
+                const Hit h{io.best[l], io.point.lane(l), io.normal.lane(l), -1};
+                lane_mismatches += io.index[i] != want_k || !test::identical(h, want);
+            }
+        }
+        CHECK(set_mismatches == 0);
+        CHECK(lane_hits > 5000);
+        CHECK(lane_mismatches == 0);
     }
+    SphereSet::use_isa(slab_isa());
 }
 
 TEST_CASE("A convex polyhedron as a mesh (mesh_of, for POV-Ray's mesh2) is the same solid: hits agree",

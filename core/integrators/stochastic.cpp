@@ -1,5 +1,7 @@
 #include "core/integrators/stochastic.h"
 
+#include "geometry/lanes_wide.h"
+
 #include <algorithm>
 
 namespace refract {
@@ -12,16 +14,10 @@ struct Path {
     Vec3 radiance{0, 0, 0};
 };
 
-// The direction a path goes on in from a hit, and whether it is unit length already (a
-// dielectric's branch) or still to be normalised (a random scatter).
-struct Next {
-    Vec3 dir;
-    bool unit;
-};
-
 // One bounce of a path whose ray `ray` met `hit` after `depth` bounces: the hit's own light,
-// then the scattered ray's direction (none: the path ends); the ray leaves the hit point.
-std::optional<Next> bounce(const SceneTracer& tracer, const SurfaceHit& hit, const Ray& ray, int depth, Path& p,
+// then the scattered ray's direction, to be normalised (none: the path ends); the ray leaves
+// the hit point.
+std::optional<Vec3> bounce(const SceneTracer& tracer, const SurfaceHit& hit, const Ray& ray, int depth, Path& p,
                           Rng& rng, RenderStats& stats) {
     const RenderSettings& s = tracer.settings();
     if (const auto a = tracer.absorption(hit, 0.0)) p.throughput = p.throughput.cwiseProduct(*a);  // Beer–Lambert
@@ -37,7 +33,6 @@ std::optional<Next> bounce(const SceneTracer& tracer, const SurfaceHit& hit, con
         return std::nullopt;
     }
     std::optional<Scatter> next;
-    bool unit = false;
     if (const auto* l = m.as<material::Lambertian>()) {
         next = scatter(*l, tracer.pigment(l->pigment, hit.hit.point), hit, rng);
     } else if (const auto* metal = m.as<material::Metal>()) {
@@ -45,7 +40,6 @@ std::optional<Next> bounce(const SceneTracer& tracer, const SurfaceHit& hit, con
     } else if (const auto* d = m.as<material::Dielectric>(); d && s.compat != Compat::PovRay) {
         ++stats.tree_nodes;  // as SceneTracer::interact counts a transparent node
         next = scatter(*d, d->ior, hit, ray, rng);
-        unit = true;
     } else {
         // Every other material: sample one branch of its interaction (RTIOW), keeping
         // a leaf's light.
@@ -55,7 +49,7 @@ std::optional<Next> bounce(const SceneTracer& tracer, const SurfaceHit& hit, con
     }
     if (!next) return std::nullopt;
     p.throughput = p.throughput.cwiseProduct(next->factor);
-    return Next{next->dir, unit};
+    return next->dir;
 }
 
 }  // namespace
@@ -68,7 +62,7 @@ Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng
         if (!hit) return p.radiance + p.throughput.cwiseProduct(tracer.background(ray.dir));
         const auto next = bounce(tracer, *hit, ray, depth, p, rng, stats);
         if (!next) return p.radiance;
-        ray = Ray{hit->hit.point, next->unit ? next->dir : Vec3(next->dir.normalized())};
+        ray = Ray{hit->hit.point, next->normalized()};
     }
 }
 
@@ -98,7 +92,7 @@ void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::fu
     none.fill(-1);
     while (on.any()) {
         const SceneTracer::LaneHits h = tracer.intersect_lanes(origin, dir, on, none, none, stats);
-        LaneMask bounced;  // the lanes whose new direction is still to be normalised
+        LaneMask bounced;  // the lanes whose new direction is to be normalised
         for (int l = 0; l < kLanes; ++l) {
             if (!on[l]) continue;
             const size_t i = static_cast<size_t>(l);
@@ -116,12 +110,11 @@ void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::fu
             }
             ++depth[i];
             origin.set(l, h.point.lane(l));
-            dir.set(l, next->dir);
-            bounced[l] = !next->unit;
+            dir.set(l, *next);
+            bounced[l] = true;
         }
         // Eigen's normalized() on every lane at once (a zero vector stays as it is).
-        bounced = bounced && (dir.squaredNorm() > Lanes(0.0));
-        if (bounced.any()) dir = select(bounced, dir.normalized(), dir);
+        if (bounced.any()) normalize_lanes(dir, bounced);
     }
 }
 
