@@ -59,13 +59,14 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
         if (g->set.size() < kMinSphereSet) g.reset();
         return g;
     };
-    if (order_.size() < kBvhMinObjects) {
+    const bool use_bvh = uses_object_bvh(scene);
+    if (!use_bvh) {
         spheres_ = group(false);
         shadow_spheres_ = group(true);
     }
     static std::atomic<std::uint64_t> tracers{0};
     id_ = ++tracers;
-    if (order_.size() >= kBvhMinObjects) {
+    if (use_bvh) {
         std::vector<std::optional<Bounds>> boxes;
         for (const Object* o : order_) {
             // A polyhedron's bounding sphere where it has one (its vertices cost O(n⁴)).
@@ -80,6 +81,12 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene), camera_basis_(scen
 }
 
 SceneTracer::~SceneTracer() = default;
+
+bool SceneTracer::uses_object_bvh(const Scene& scene) {
+    size_t spheres = 0;
+    for (const Object& o : scene.objects) spheres += std::holds_alternative<Sphere>(o.shape) ? 1 : 0;
+    return (scene.objects.size() - spheres) + spheres / kSpheresPerObject >= kBvhMinObjects;
+}
 
 std::optional<Hit> SceneTracer::intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const {
     if (const auto& a = mesh_accel_[k]) return a->intersect(ray, t_min, t_max);

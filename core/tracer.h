@@ -21,11 +21,16 @@ namespace refract {
 class SceneTracer {
 public:
     // Builds the search structures: Embree's BVH for each mesh of kMinTriangles or more
-    // (geometry/mesh_accel.h), and a BVH over the objects when there are kBvhMinObjects or
-    // more (geometry/object_bvh.h). The scene must outlive the tracer, unchanged.
+    // (geometry/mesh_accel.h), and a BVH over the objects (geometry/object_bvh.h) when the
+    // search cost, a sphere counting 1/kSpheresPerObject (they are tested together, eight at
+    // a time) and any other object 1, reaches kBvhMinObjects; below it the spheres are
+    // tested as a set (geometry/sphere_set.h) and the rest one by one. The scene must
+    // outlive the tracer, unchanged.
     explicit SceneTracer(const Scene& scene);
     ~SceneTracer();
-    static constexpr size_t kBvhMinObjects = 64;  // the cross-over measured by `refract bench --objects`
+    // The cross-overs measured by `refract bench --objects` (docs/performance.md).
+    static constexpr size_t kBvhMinObjects = 64, kSpheresPerObject = 8;
+    static bool uses_object_bvh(const Scene& scene);
     // Plane sets given facet-local intersection (its facet polygons cost O(planes²) to build).
     static constexpr size_t kMinFacetPlanes = 8, kMaxFacetPlanes = 4096;
 
