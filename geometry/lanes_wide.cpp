@@ -11,13 +11,14 @@
 #endif
 
 #include "geometry/plane_set.h"
+#include "geometry/simd.h"
 
 namespace refract {
 
 namespace {
 
-typedef double Lane8 __attribute__((vector_size(8 * sizeof(double))));
-typedef std::int64_t Mask8 __attribute__((vector_size(8 * sizeof(std::int64_t))));
+using simd::Lane8;
+using simd::Mask8;
 static_assert(kLanes == 8, "eight lanes");
 
 #define REFRACT_NORMALIZE(TYPE, SQRT)                                                   \
@@ -28,12 +29,7 @@ static_assert(kLanes == 8, "eight lanes");
     Lane8 n2 = x * x + y * y;                                                           \
     n2 = n2 + z * z;                                                                    \
     Lane8 len;                                                                          \
-    for (std::size_t i = 0; i < 8; i += sizeof(TYPE) / sizeof(double)) {                \
-        TYPE q;                                                                         \
-        std::memcpy(&q, reinterpret_cast<const double*>(&n2) + i, sizeof q);            \
-        q = SQRT(q);                                                                    \
-        std::memcpy(reinterpret_cast<double*>(&len) + i, &q, sizeof q);                 \
-    }                                                                                   \
+    REFRACT_SQRT8(TYPE, SQRT, n2, len)                                                  \
     Mask8 on;                                                                           \
     for (int l = 0; l < 8; ++l) on[l] = ((mask >> l) & 1u) ? -1 : 0;                    \
     on = on & (n2 > Lane8{});                                                           \
@@ -51,32 +47,23 @@ void normalize_baseline(LaneVec3& v, std::uint32_t mask) { REFRACT_NORMALIZE(__m
 __attribute__((target("avx2"))) void normalize_avx2(LaneVec3& v, std::uint32_t mask) {
     REFRACT_NORMALIZE(__m256d, _mm256_sqrt_pd)
 }
-// GCC 12's avx512fintrin.h initialises some results from themselves (__m512d __Y = __Y),
-// which -Wmaybe-uninitialized reports wherever they are inlined.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+REFRACT_AVX512_BEGIN
 __attribute__((target("avx512f"))) void normalize_avx512f(LaneVec3& v, std::uint32_t mask) {
     REFRACT_NORMALIZE(__m512d, _mm512_sqrt_pd)
 }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+REFRACT_AVX512_END
 #else
 void normalize_baseline(LaneVec3& v, std::uint32_t mask) { REFRACT_NORMALIZE(double, std::sqrt) }
 #endif
 #undef REFRACT_NORMALIZE
 
-NormalizeFn normalize_function(SlabIsa isa) {
 #if defined(__x86_64__)
-    if (!slab_isa_supported(isa)) return normalize_baseline;
-    if (isa == SlabIsa::avx512f) return normalize_avx512f;
-    if (isa == SlabIsa::avx2) return normalize_avx2;
-#endif
-    return normalize_baseline;
+NormalizeFn normalize_function(SlabIsa isa) {
+    return simd::variant<NormalizeFn>(isa, normalize_baseline, normalize_avx2, normalize_avx512f);
 }
+#else
+NormalizeFn normalize_function(SlabIsa) { return normalize_baseline; }
+#endif
 
 std::atomic<NormalizeFn> in_use{nullptr};
 

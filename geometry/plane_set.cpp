@@ -29,6 +29,7 @@
 // The planes are read as they lie in memory, Plane = {normal x, y, z, offset}, and
 // transposed in registers; nothing is cached, so nothing can go stale.
 #include "geometry/plane_set.h"
+#include "geometry/simd.h"
 
 #include <cstring>
 #include <limits>
@@ -66,16 +67,7 @@ const double* first_block(const Plane* planes, std::size_t n, std::size_t w, dou
 
 // ---- Baseline (SSE2, W = 2) and AVX2 (W = 4): GNU vector extensions, written once. -----
 
-template <int W>
-struct Doubles;  // GCC does not take a template-dependent vector_size
-template <>
-struct Doubles<2> {
-    typedef double type __attribute__((vector_size(2 * sizeof(double))));
-};
-template <>
-struct Doubles<4> {
-    typedef double type __attribute__((vector_size(4 * sizeof(double))));
-};
+using simd::Doubles;
 
 // Inlined into the per-target functions below, so each copy is compiled for its own
 // instruction set (no helper functions with vector arguments: clang refuses those across
@@ -195,12 +187,7 @@ __attribute__((target("avx2"))) SlabSpan slab_avx2(const Plane* planes, std::siz
 }
 
 // ---- AVX-512F (W = 8): intrinsics, for the k-mask forms (masked max/min and compares). ----
-// GCC 12's avx512fintrin.h initialises some results from themselves (__m512d __Y = __Y),
-// which -Wuninitialized reports wherever they are inlined.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
+REFRACT_AVX512_BEGIN
 __attribute__((target("avx512f"))) SlabSpan slab_avx512f(const Plane* planes, std::size_t n, const Ray& r) {
     constexpr std::size_t W = 8;
     const __m512d dx = _mm512_set1_pd(r.dir.x()), dy = _mm512_set1_pd(r.dir.y()), dz = _mm512_set1_pd(r.dir.z());
@@ -273,9 +260,7 @@ __attribute__((target("avx512f"))) SlabSpan slab_avx512f(const Plane* planes, st
                     static_cast<int>(i_out)};
 }
 
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+REFRACT_AVX512_END
 
 #endif  // REFRACT_SLAB_X86
 

@@ -11,6 +11,7 @@
 #endif
 
 #include "geometry/plane_set.h"
+#include "geometry/simd.h"
 
 namespace refract {
 
@@ -19,20 +20,9 @@ namespace {
 constexpr std::size_t kBlock = 8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-template <int W>
-struct Doubles;  // GCC does not take a template-dependent vector_size
-template <>
-struct Doubles<2> {
-    typedef double type __attribute__((vector_size(2 * sizeof(double))));
-};
-template <>
-struct Doubles<4> {
-    typedef double type __attribute__((vector_size(4 * sizeof(double))));
-};
-template <>
-struct Doubles<8> {
-    typedef double type __attribute__((vector_size(8 * sizeof(double))));
-};
+using simd::Doubles;
+using simd::Lane8;
+using simd::Mask8;
 
 // t of every sphere of the (padded) list, W spheres a step: its nearer root in (t_min,
 // t_max), else its farther one, else +inf; and its b = oc·d. The arithmetic is
@@ -74,17 +64,9 @@ using RootsFn = void (*)(REFRACT_ROOTS_ARGS);
 #if defined(__x86_64__)
 void roots_baseline(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(2, _mm_sqrt_pd) }
 __attribute__((target("avx2"))) void roots_avx2(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(4, _mm256_sqrt_pd) }
-// GCC 12's avx512fintrin.h initialises some results from themselves (__m512d __Y = __Y),
-// which -Wmaybe-uninitialized reports wherever they are inlined.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+REFRACT_AVX512_BEGIN
 __attribute__((target("avx512f"))) void roots_avx512f(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(8, _mm512_sqrt_pd) }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+REFRACT_AVX512_END
 #else
 Doubles<2>::type sqrt2(Doubles<2>::type v) { return Doubles<2>::type{std::sqrt(v[0]), std::sqrt(v[1])}; }
 void roots_baseline(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(2, sqrt2) }
@@ -96,8 +78,6 @@ void roots_baseline(REFRACT_ROOTS_ARGS) { REFRACT_SPHERE_ROOTS(2, sqrt2) }
 // doubles; lowered to 2 or 4 registers where the instruction set is narrower). Per sphere
 // the arithmetic of REFRACT_SPHERE_ROOTS, with each lane's window ending at its best t so
 // far, as the scalar search narrows it.
-typedef double Lane8 __attribute__((vector_size(8 * sizeof(double))));
-typedef std::int64_t Mask8 __attribute__((vector_size(8 * sizeof(std::int64_t))));
 static_assert(kLanes == 8, "the lane kernel holds eight lanes");
 
 #define REFRACT_SPHERE_LANES(TYPE, SQRT)                                                              \
@@ -123,12 +103,7 @@ static_assert(kLanes == 8, "the lane kernel holds eight lanes");
         c = c - r2[k];                                                                              \
         const Lane8 disc = b * b - c;                                                               \
         Lane8 sq;                                                                                   \
-        for (std::size_t i = 0; i < 8; i += sizeof(TYPE) / sizeof(double)) {                       \
-            TYPE x;                                                                                 \
-            std::memcpy(&x, reinterpret_cast<const double*>(&disc) + i, sizeof x);                  \
-            x = SQRT(x);                                                                            \
-            std::memcpy(reinterpret_cast<double*>(&sq) + i, &x, sizeof x);                          \
-        }                                                                                           \
+        REFRACT_SQRT8(TYPE, SQRT, disc, sq)                                                         \
         const Lane8 near = -b - sq, far = -b + sq;                                                  \
         const Lane8 t = (near > lo) & (near < best) ? near : far;                                   \
         const Lane8 kd = static_cast<double>(k) - Lane8{};                                          \
@@ -156,12 +131,7 @@ static_assert(kLanes == 8, "the lane kernel holds eight lanes");
         Lane8 len2 = nx * nx + ny * ny;                                                             \
         len2 = len2 + nz * nz;                                                                      \
         Lane8 len;                                                                                  \
-        for (std::size_t i = 0; i < 8; i += sizeof(TYPE) / sizeof(double)) {                        \
-            TYPE x;                                                                                 \
-            std::memcpy(&x, reinterpret_cast<const double*>(&len2) + i, sizeof x);                  \
-            x = SQRT(x);                                                                            \
-            std::memcpy(reinterpret_cast<double*>(&len) + i, &x, sizeof x);                         \
-        }                                                                                           \
+        REFRACT_SQRT8(TYPE, SQRT, len2, len)                                                        \
         const Lane8 ux = nx / len, uy = ny / len, uz = nz / len;                                    \
         std::memcpy(point_io, &px, sizeof px);                                                      \
         std::memcpy(point_io + 8, &py, sizeof py);                                                  \
@@ -182,40 +152,24 @@ using LanesFn = std::uint32_t (*)(REFRACT_LANES_ARGS);
 #if defined(__x86_64__)
 std::uint32_t lanes_baseline(REFRACT_LANES_ARGS) { REFRACT_SPHERE_LANES(__m128d, _mm_sqrt_pd) }
 __attribute__((target("avx2"))) std::uint32_t lanes_avx2(REFRACT_LANES_ARGS) { REFRACT_SPHERE_LANES(__m256d, _mm256_sqrt_pd) }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
+REFRACT_AVX512_BEGIN
 __attribute__((target("avx512f"))) std::uint32_t lanes_avx512f(REFRACT_LANES_ARGS) {
     REFRACT_SPHERE_LANES(__m512d, _mm512_sqrt_pd)
 }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+REFRACT_AVX512_END
 #else
 std::uint32_t lanes_baseline(REFRACT_LANES_ARGS) { REFRACT_SPHERE_LANES(double, std::sqrt) }
 #endif
 #undef REFRACT_SPHERE_LANES
 #undef REFRACT_LANES_ARGS
 
-LanesFn lanes_function(SlabIsa isa) {
 #if defined(__x86_64__)
-    if (!slab_isa_supported(isa)) return lanes_baseline;
-    if (isa == SlabIsa::avx512f) return lanes_avx512f;
-    if (isa == SlabIsa::avx2) return lanes_avx2;
+LanesFn lanes_function(SlabIsa isa) { return simd::variant<LanesFn>(isa, lanes_baseline, lanes_avx2, lanes_avx512f); }
+RootsFn roots_function(SlabIsa isa) { return simd::variant<RootsFn>(isa, roots_baseline, roots_avx2, roots_avx512f); }
+#else
+LanesFn lanes_function(SlabIsa) { return lanes_baseline; }
+RootsFn roots_function(SlabIsa) { return roots_baseline; }
 #endif
-    return lanes_baseline;
-}
-
-RootsFn roots_function(SlabIsa isa) {
-#if defined(__x86_64__)
-    if (!slab_isa_supported(isa)) return roots_baseline;
-    if (isa == SlabIsa::avx512f) return roots_avx512f;
-    if (isa == SlabIsa::avx2) return roots_avx2;
-#endif
-    return roots_baseline;
-}
 
 // The variants in use: the best the CPU runs, or the one a test asked for.
 std::atomic<RootsFn> roots_in_use{nullptr};

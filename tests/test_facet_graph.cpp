@@ -97,6 +97,32 @@ ConvexPolyhedron brilliant() {
     return c;
 }
 
+// A packet test of the lanes of `active` against each lane's one-ray facet-local answer
+// (decided or not, and the hit to the last bit) and the full plane loop's: counts the
+// lanes, those decided locally and the mismatches.
+void compare_packet(const FacetGraph& g, const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& d,
+                    const LaneMask& active, double t_min, const Lanes& t_max, int from,
+                    const std::array<std::int32_t, kLanes>& guess, long& lanes, long& decided, long& mismatches) {
+    const FacetGraph::LocalLanes loc = g.intersect_lanes(c, o, d, active, t_min, t_max, from, guess);
+    for (int l = 0; l < kLanes; ++l) {
+        if (!active[l]) continue;
+        ++lanes;
+        const Ray r{o.lane(l), d.lane(l)};
+        const FacetGraph::Local one = g.intersect(c, r, t_min, t_max[l], from, guess[static_cast<size_t>(l)]);
+        if (loc.decided[l] != one.decided) {
+            ++mismatches;
+            continue;
+        }
+        if (!one.decided) continue;
+        ++decided;
+        std::optional<Hit> got;
+        if (loc.hit[l])
+            got = Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(loc.facet[static_cast<size_t>(l)])].normal,
+                      loc.facet[static_cast<size_t>(l)]};
+        mismatches += !identical(got, one.hit) || !identical(got, intersect(c, r, t_min, t_max[l]));
+    }
+}
+
 }  // namespace
 
 TEST_CASE("Facet-local intersection equals the full plane loop bit for bit on the round brilliant", "[geometry]") {
@@ -315,24 +341,7 @@ TEST_CASE("Facet-local intersection of a packet of rays leaving one facet equals
             const auto want = intersect(c, Ray{hit->point, dir}, 1e-6, t_max[l]);
             guess[static_cast<size_t>(l)] = l % 3 == 0 ? -1 : l % 3 == 1 && want ? want->facet : any(rng);
         }
-        const FacetGraph::LocalLanes loc = g.intersect_lanes(c, o, d, active, 1e-6, t_max, hit->facet, guess);
-        for (int l = 0; l < kLanes; ++l) {
-            if (!active[l]) continue;
-            ++lanes;
-            const Ray r{o.lane(l), d.lane(l)};
-            const FacetGraph::Local one = g.intersect(c, r, 1e-6, t_max[l], hit->facet, guess[static_cast<size_t>(l)]);
-            if (loc.decided[l] != one.decided) {
-                ++mismatches;
-                continue;
-            }
-            if (!one.decided) continue;
-            ++decided;
-            std::optional<Hit> got;
-            if (loc.hit[l])
-                got = Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(loc.facet[static_cast<size_t>(l)])].normal,
-                          loc.facet[static_cast<size_t>(l)]};
-            mismatches += !identical(got, one.hit) || !identical(got, intersect(c, r, 1e-6, t_max[l]));
-        }
+        compare_packet(g, c, o, d, active, 1e-6, t_max, hit->facet, guess, lanes, decided, mismatches);
     }
     CHECK(lanes > 20000);
     CHECK(decided > lanes / 3);
@@ -378,23 +387,7 @@ TEST_CASE("Facet-local intersection of packets aimed at the brilliant's corners 
             const auto want = intersect(c, Ray{hit->point, dir}, t_min, kInf);
             guess[static_cast<size_t>(l)] = l % 3 == 2 ? -1 : l % 3 == 0 && want ? want->facet : any(rng);
         }
-        const FacetGraph::LocalLanes loc = g.intersect_lanes(c, o, d, active, t_min, t_max, hit->facet, guess);
-        for (int l = 0; l < kLanes; ++l) {
-            ++lanes;
-            const Ray r{o.lane(l), d.lane(l)};
-            const FacetGraph::Local one = g.intersect(c, r, t_min, kInf, hit->facet, guess[static_cast<size_t>(l)]);
-            if (loc.decided[l] != one.decided) {
-                ++mismatches;
-                continue;
-            }
-            if (!one.decided) continue;
-            ++decided;
-            std::optional<Hit> got;
-            if (loc.hit[l])
-                got = Hit{loc.t[l], loc.point.lane(l), c.planes[static_cast<size_t>(loc.facet[static_cast<size_t>(l)])].normal,
-                          loc.facet[static_cast<size_t>(l)]};
-            mismatches += !identical(got, one.hit) || !identical(got, intersect(c, r, t_min, kInf));
-        }
+        compare_packet(g, c, o, d, active, t_min, t_max, hit->facet, guess, lanes, decided, mismatches);
     }
     INFO(lanes << " lanes, " << decided << " decided locally");
     CHECK(lanes > 5000);
