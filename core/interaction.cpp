@@ -134,7 +134,7 @@ Interaction dielectric_physical(const material::Dielectric& m, const SurfaceHit&
         const double cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
         n.branch[0] = Branch{Ray{h.hit.point, d.reflected}, Vec3(1, 1, 1), d.R};
         n.mueller[0] = polar::mueller_reflection(cos_i, eta);
-        if (d.refracted && d.R < 1.0) {
+        if (d.transmits()) {
             n.branch[1] = Branch{Ray{h.hit.point, *d.refracted}, m.filter, d.transmit_bailout};
             n.mueller[1] = *polar::mueller_transmission(cos_i, eta);
             n.branches = 2;
@@ -142,7 +142,7 @@ Interaction dielectric_physical(const material::Dielectric& m, const SurfaceHit&
         return n;
     }
     n.branch[0] = Branch{Ray{h.hit.point, d.reflected}, Vec3::Constant(d.R), d.R};
-    if (d.refracted && d.R < 1.0) {
+    if (d.transmits()) {
         n.branch[1] = Branch{Ray{h.hit.point, *d.refracted}, d.transmit_factor, d.transmit_bailout};
         n.branches = 2;
     }
@@ -179,12 +179,12 @@ std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, co
     return Scatter{dir, m.color};
 }
 
-Scatter scatter(const material::Dielectric& m, double ior, const SurfaceHit& h, const Ray& ray, Rng& rng) {
-    const double eta = h.entering ? ior : 1.0 / ior;
+Scatter scatter(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, Rng& rng) {
+    const double eta = h.entering ? m.ior : 1.0 / m.ior;
     const DielectricTerms<double> t = dielectric_terms(ray.dir, h.normal, eta, m.reflectance, m.constant_reflectivity);
-    // Two branches (as dielectric_physical spawns them) only where light is transmitted.
+    // A choice only where dielectric_physical spawns two branches (DielectricNode::transmits).
     namespace gen = optics::generic;
-    if (t.cos_t && t.R < 1.0 && !(rng.uniform() < t.R))
+    if (t.transmits() && !(rng.uniform() < t.R))
         return Scatter{gen::refracted_direction(ray.dir, h.normal, t.cos_i, *t.cos_t, eta), m.filter};
     return Scatter{gen::reflect(ray.dir, h.normal), Vec3(1, 1, 1)};
 }

@@ -133,6 +133,8 @@ struct DielectricNode {
     S R;
     V transmit_factor;           // (1 − R) · filter
     S transmit_bailout;          // its largest component
+    // Whether light is transmitted: the refracted branch exists and carries some of it.
+    bool transmits() const { return refracted && R < S(1.0); }
 };
 
 // What a dielectric node's branches depend on: cos θi, cos θt by Snell's law (empty: total
@@ -143,6 +145,8 @@ struct DielectricTerms {
     S cos_i;
     std::optional<S> cos_t;
     S R;
+    // Whether light is transmitted: a refracted branch exists and carries some of it.
+    bool transmits() const { return cos_t && R < S(1.0); }
 };
 template <class V>
 DielectricTerms<typename V::Scalar> dielectric_terms(const V& dir, const V& normal, typename V::Scalar eta,
@@ -226,9 +230,9 @@ std::optional<Scatter> scatter(const material::Lambertian& m, const Vec3& pigmen
 std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
 // RTIOW's dielectric in the physical mode: reflection with probability R, else refraction
 // (the filter colour), the throughput unweighted by R; the node's R (dielectric_node), the
-// chosen direction alone computed. `ior`: the index inside. Like the other kinds' scatters,
-// the direction is left for the caller to normalise (normalised, it is dielectric_node's).
-Scatter scatter(const material::Dielectric& m, double ior, const SurfaceHit& h, const Ray& ray, Rng& rng);
+// chosen direction alone computed. Like the other kinds' scatters, the direction is left
+// for the caller to normalise (normalised, it is dielectric_node's).
+Scatter scatter(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
 // One branch of an interaction chosen at random (RTIOW's dielectric: reflection with
 // probability R, else refraction, the throughput unweighted by R; a mirror's single
 // branch with its colour factor).

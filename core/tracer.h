@@ -80,7 +80,7 @@ public:
     static bool facet_local();
     // Packets of rays (geometry/lanes.h) for every tracer of the process: the wavelength
     // bands of a split in the spectral eye pass and the light pass (RayTreeWalkerT::walk_lanes),
-    // the samples of a pixel in the stochastic integrator (stochastic_radiance_lanes). On by
+    // the samples of a pixel in the stochastic integrator (stochastic_radiance_samples). On by
     // default; off: one ray at a time, the same images to the last bit.
     static void set_lanes(bool on);
     static bool lanes();

@@ -266,14 +266,11 @@ REFRACT_AVX512_END
 
 using SlabFn = SlabSpan (*)(const Plane*, std::size_t, const Ray&);
 
-SlabFn slab_function(SlabIsa isa) {
-    if (!slab_isa_supported(isa)) return slab_baseline;
 #if REFRACT_SLAB_X86
-    if (isa == SlabIsa::avx512f) return slab_avx512f;
-    if (isa == SlabIsa::avx2) return slab_avx2;
+SlabFn slab_function(SlabIsa isa) { return simd::variant<SlabFn>(isa, slab_baseline, slab_avx2, slab_avx512f); }
+#else
+SlabFn slab_function(SlabIsa) { return slab_baseline; }
 #endif
-    return slab_baseline;
-}
 
 }  // namespace
 

@@ -39,7 +39,7 @@ std::optional<Vec3> bounce(const SceneTracer& tracer, const SurfaceHit& hit, con
         next = scatter(*metal, hit, ray, rng);
     } else if (const auto* d = m.as<material::Dielectric>(); d && s.compat != Compat::PovRay) {
         ++stats.tree_nodes;  // as SceneTracer::interact counts a transparent node
-        next = scatter(*d, d->ior, hit, ray, rng);
+        next = scatter(*d, hit, ray, rng);
     } else {
         // Every other material: sample one branch of its interaction (RTIOW), keeping
         // a leaf's light.
