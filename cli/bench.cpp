@@ -204,9 +204,9 @@ void diamond(const refract::experiments::ohtsuka1998::SceneParams& p, const Args
             images[k] = validation::render_povray(k == 4 ? sdl_csg : sdl_mesh, p.width, p.height, po).image;
             return;
         }
-        SceneTracer::set_facet_local(k != 3);
-        const RenderResult r = render(k == 0 ? pov : k == 1 ? pov_mesh : phys, opt);
-        SceneTracer::set_facet_local(true);
+        RenderOptions o = opt;
+        o.trace.facet_local = k != 3;
+        const RenderResult r = render(k == 0 ? pov : k == 1 ? pov_mesh : phys, o);
         images[k] = r.image;
         if (k == 2) {
             light_wall.push_back(r.stats.light_seconds);

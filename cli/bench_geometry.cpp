@@ -232,7 +232,7 @@ void objects(int rounds) {
         const double a = 1e9 * median(p.wall[0]) / rays.size(), b = 1e9 * median(p.wall[1]) / linear_rays;
         std::printf("  %8d %11.1f / %10.1f %11.1f / %10.1f %9.1fx   (%s; hits %ld of %zu; linear on %zu rays)\n",
                     count + 1, a, 1e9 * minimum(p.wall[0]) / rays.size(), b, 1e9 * minimum(p.wall[1]) / linear_rays, b / a,
-                    SceneTracer::uses_object_bvh(s) ? "object BVH" : "sphere set", hits[0], rays.size(), linear_rays);
+                    HitSearch::uses_object_bvh(s) ? "object BVH" : "sphere set", hits[0], rays.size(), linear_rays);
     }
     print_load("after");
 }

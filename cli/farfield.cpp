@@ -66,7 +66,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
         s.seed = a->seed;
         s.max_memory = a->max_memory;
         s.wavelengths = a->wavelengths;
-        s.wavelength_lanes = !a->no_lanes;
+        s.trace.packets = !a->no_lanes;
         if (scene.lights.empty() && scene.background.kind != Background::Kind::Environment)
             throw InputError(a->scene + ": /lights: the far-field detector needs a light or an environment background");
         const FarFieldResult r = far_field(scene, s, a->threads);

@@ -46,8 +46,6 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
                   "Walk the wavelengths of a spectral split and the samples of a pixel (stochastic) one by one "
                   "instead of in packets of 8 (the same image to the last bit, slower; for comparison)");
     sub->callback([args] {
-        if (args->full_plane_loop) refract::SceneTracer::set_facet_local(false);
-        if (args->no_lanes) refract::SceneTracer::set_lanes(false);
         refract::check_image_path(args->output);  // before the work, not after it
         const refract::Scene scene = refract::load_scene(args->scene);
         refract::RenderOptions opt;
@@ -56,6 +54,8 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         opt.spectral_channels = args->spectral;
         opt.lost_energy = args->lost;
         opt.max_memory = args->max_memory;
+        opt.trace.facet_local = !args->full_plane_loop;
+        opt.trace.packets = !args->no_lanes;
         const auto result = refract::render(scene, opt);
         refract::write_image(args->output, result.image, {args->linear16});
         if (result.polarisation)

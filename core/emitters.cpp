@@ -37,7 +37,7 @@ Frame frame_across(const Vec3& axis) {
 std::vector<BoundingSphere> transparent_targets(const Scene& scene) {
     std::vector<BoundingSphere> targets;
     for (const Object& o : scene.objects)
-        if (scene.materials[o.material].transparent_filter())
+        if (transparent(scene.materials[static_cast<size_t>(o.material)]))
             if (auto b = bounding_sphere(o.shape)) targets.push_back(*b);
     return targets;
 }

@@ -161,13 +161,13 @@ struct FarFieldEnds {
     }
     // The lanes of a packet leaving the scene (natural light): background() for each.
     void background_lanes(const LaneEntry& p, const LaneMask& m) {
-        const Lanes mean = (p.weight[0] + p.weight[1] + p.weight[2]) / Lanes(3.0);  // amount(): Vec3::mean()
+        const Lanes mean = mean_of(p.weight);  // amount(): Vec3::mean()
         for (int l = 0; l < kLanes; ++l) {
             if (!m[l]) continue;
             const size_t i = static_cast<size_t>(l);
             const int cls = event_class(p.transmissions[i], p.reflections[i]);
             const size_t w = static_cast<size_t>(p.band[i]) - w0;
-            natural(w, p.depth, cls, p.depth == 0 ? 0 : geo.bin_of(p.dir.lane(l)), mean[l]);
+            natural(w, p.depth, cls, p.depth == 0 ? 0 : geo.bin_of(p.ray.dir.lane(l)), mean[l]);
         }
     }
     void leaf(const Entry& e, const SurfaceHit&) { tally.absorbed[slot(e)] += fixed(amount(e) * scale); }
@@ -182,7 +182,7 @@ struct FarFieldEnds {
 
 bool spectral_scene(const Scene& scene) {
     for (const Material& m : scene.materials)
-        if (const auto* d = m.dielectric(); d && (d->dispersion || d->absorption)) return true;
+        if ((m.dielectric() && dispersive(m)) || absorption(m)) return true;  // a crystal: at 550 nm unless asked
     return false;
 }
 
@@ -245,11 +245,13 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
     scene.settings.compat = Compat::Physical;
     scene.settings.spectral.shortcut = false;
     SpectralContext ctx = SpectralContext::build(scene);
+    const CompatRules rules(scene.settings);
     ctx.all_wavelengths = r.wavelengths;  // exact values, also for an uneven list
     ctx.index.assign(r.wavelengths.size(), std::vector<double>(scene.materials.size(), 0.0));
     for (size_t mi = 0; mi < scene.materials.size(); ++mi)
-        if (const auto* d = scene.materials[mi].dielectric(); d && d->dispersion)
-            for (size_t w = 0; w < r.wavelengths.size(); ++w) ctx.index[w][mi] = d->dispersion->n(r.wavelengths[w]);
+        if (dispersive(scene.materials[mi]))
+            for (size_t w = 0; w < r.wavelengths.size(); ++w)
+                ctx.index[w][mi] = band_index(scene.materials[mi], r.wavelengths[w], rules);
 
     const Geometry geo(r.settings);
     const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
@@ -280,7 +282,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
         return r;
     }
 
-    SceneTracer tracer(scene);
+    SceneTracer tracer(scene, settings.trace);
     const TreeLimits limits = ctx.limits(scene.settings);
     tbb::task_arena arena(nthreads);
     constexpr std::uint64_t kChunk = 4096;
@@ -311,8 +313,6 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                         using P = decltype(payload);
                         RayTreeWalkerT<P> walker(tracer, limits, st);
                         FarFieldEnds<P> ends{geo, ctx, tally, scale, r.classes, r.components, r.bins, w0, per_wavelength};
-                        typename RayTreeWalkerT<P>::List list;  // one list for the chunk's photons
-                        FifoList<LaneEntry> packets;
                         // The weight the walker dropped for one wavelength of a photon (its power
                         // rides on it), summed per cause from zero.
                         const auto drop = [&](size_t w, double depth, double limits, double threshold) {
@@ -323,52 +323,28 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                             TreeEntryT<P> e{ray, Vec3::Constant(power.mean())};
                             if constexpr (std::is_same_v<P, LightStokes>) e.pol = emitted(pol, ray.dir);
                             const auto first = tracer.intersect(ray, st);  // the same at every wavelength
-                            if constexpr (std::is_same_v<P, NaturalLight>) {
-                                if (first && settings.wavelength_lanes && tracer.lanes_apply()) {
-                                    const SceneTracer::LaneHits h = SceneTracer::lanes_of(*first);
-                                    for (size_t w = w0; w < w0 + gw; w += kLanes) {
-                                        LaneEntry pk;
-                                        pk.origin = LaneVec3::broadcast(ray.origin);
-                                        pk.dir = LaneVec3::broadcast(ray.dir);
-                                        for (int c = 0; c < 3; ++c) pk.weight[c] = Lanes(e.weight[c]);
-                                        pk.bailout = Lanes(e.bailout);
-                                        pk.travelled = Lanes(0.0);
-                                        pk.facet.fill(-1);
-                                        pk.object.fill(-1);
-                                        pk.reflections.fill(0);
-                                        pk.transmissions.fill(0);
-                                        for (int l = 0; l < kLanes; ++l) {
-                                            pk.active[l] = w + static_cast<size_t>(l) < w0 + gw;
-                                            pk.band[static_cast<size_t>(l)] = static_cast<std::int16_t>(pk.active[l] ? w + static_cast<size_t>(l) : w);
-                                        }
-                                        LaneLosses lost;
-                                        walker.arrive_lanes(pk, h, packets, ends, lost);
-                                        walker.walk_lanes(packets, ends, lost);
-                                        for (int l = 0; l < kLanes; ++l) {
-                                            if (!pk.active[l]) continue;
-                                            walker.add_losses(lost, l);
-                                            drop(w + static_cast<size_t>(l), lost.depth[l], lost.limits[l], lost.threshold[l]);
-                                        }
-                                    }
-                                    continue;
-                                }
-                            }
-                            for (size_t w = w0; w < w0 + gw; ++w) {
-                                e.band = static_cast<std::int16_t>(w);
-                                if (!first) {
+                            if (!first) {
+                                for (size_t w = w0; w < w0 + gw; ++w) {
+                                    e.band = static_cast<std::int16_t>(w);
                                     ends.background(e);
-                                    continue;
                                 }
-                                const double d0 = st.lost_depth, l0 = st.lost_limits, t0 = st.lost_threshold;
-                                st.lost_depth = st.lost_limits = st.lost_threshold = 0;
-                                walker.arrive(e, *first, list, ends);
-                                walker.walk(list, ends);
-                                const double depth = st.lost_depth, limits = st.lost_limits, threshold = st.lost_threshold;
-                                st.lost_depth = d0 + depth;
-                                st.lost_limits = l0 + limits;
-                                st.lost_threshold = t0 + threshold;
-                                drop(w, depth, limits, threshold);
+                                continue;
                             }
+                            // Each wavelength of the group from the first hit on (in packets
+                            // where the tracer walks them), its dropped power tallied.
+                            walker.walk_bands(
+                                static_cast<int>(gw),
+                                [&](auto& s, int i) {
+                                    e.band = static_cast<std::int16_t>(w0 + static_cast<size_t>(i));
+                                    s.arrive(e, *first);
+                                },
+                                ends,
+                                [&](int i, const LossesT<double>& lost) {
+                                    st.lost_depth += lost.depth;
+                                    st.lost_limits += lost.limits;
+                                    st.lost_threshold += lost.threshold;
+                                    drop(w0 + static_cast<size_t>(i), lost.depth, lost.limits, lost.threshold);
+                                });
                         }
                     };
                     if (exact) run(LightStokes{});

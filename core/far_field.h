@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "core/trace_options.h"
 #include "core/scene.h"
 
 namespace refract {
@@ -45,9 +46,9 @@ struct FarFieldSettings {
     // dispersive or absorbs per wavelength, else the single wavelength 550 nm.
     std::vector<double> wavelengths;
     std::uint64_t max_memory = 0;  // bytes; 0: default_memory_budget() (core/memory.h)
-    // Natural light: the wavelengths of a photon walked together in packets of kLanes
-    // (RayTreeWalkerT::walk_lanes), the same result as one by one to the last bit.
-    bool wavelength_lanes = true;
+    // How rays are searched and walked (natural light: the wavelengths of a photon walked
+    // together in packets of kLanes, the same result as one by one to the last bit).
+    TraceOptions trace;
 };
 
 struct FarFieldResult {

@@ -1,25 +1,38 @@
 #pragma once
-// What each material kind does where a ray meets it: the interaction returns the
-// branches the ray spawns (direction, colour factor, the factor the pruning threshold
-// uses), or says that the branch ends there (a leaf: diffuse surfaces and emitters, whose
-// light the integrator gathers). One function per kind, dispatched over the Material
-// variant, so a kind without one fails to compile. The stochastic integrator samples
-// these same branches (core/integrators/stochastic.cpp); only Lambertian and fuzzy metal
-// scatter randomly, and own that sampling here too.
+// What happens where a ray meets a surface: the interaction returns the branches the ray
+// spawns (direction, colour factor, the factor the pruning threshold uses), or says that
+// the branch ends there (a leaf: diffuse surfaces and emitters, whose light the
+// integrator gathers). Each material kind's interaction is one of its rules
+// (core/materials/); this header holds the types they share and the physics of the
+// dielectric node, written once over the scalar type: S = double for one ray, S = Lanes
+// for a packet (geometry/width.h), and a counting scalar for experiments/yasuda_cost.cpp.
+// Total internal reflection is a mask (`tir`), not an empty optional, so that lanes 2 and
+// 5 of a packet can reflect totally while the others refract.
 #include <array>
 #include <cstdint>
-#include <optional>
+#include <type_traits>
+#include <utility>
 
 #include "core/birefringence.h"
-#include "core/material.h"
 #include "core/optics.h"
 #include "core/polarisation.h"
 #include "core/random.h"
 #include "geometry/shapes.h"
+#include "geometry/width.h"
 
 namespace refract {
 
 struct Object;
+struct Material;
+class CompatRules;
+
+enum class ReflectanceModel {
+    Constant,  // Whitted: ks = constant_reflectivity, kt = 1 − ks
+    Fresnel,   // exact, natural light (Yasuda eq. 7)
+    FresnelS,  // s-polarised only
+    FresnelP,  // p-polarised only
+    Schlick,   // RTIOW approximation
+};
 
 // Where a ray starts: the object (index in Scene::objects) and facet of the hit it leaves
 // (a reflected or refracted branch), or none (-1: a camera ray, a photon from a light).
@@ -65,10 +78,9 @@ struct Interaction {
     std::array<polar::Mueller, 3> mueller;
 };
 
-// What a dielectric interaction depends on besides the hit.
+// What an interaction depends on besides the hit.
 struct InteractionContext {
-    bool pov = false;     // POV-Ray 3.7 compat semantics
-    double adc = 0;       // POV-Ray: adc_bailout (local test of the refracted ray)
+    const CompatRules* rules = nullptr;  // the render's compatibility policy (core/compat.h)
     double band_ior = 0;  // > 0: the index at one wavelength instead of `ior`
     bool split = false;   // POV-Ray: the band's share of an RGB ray splitting here
     bool exact = false;   // exact polarisation: Mueller matrices on the branches
@@ -80,25 +92,34 @@ struct InteractionContext {
     bool adjoint = false;
 };
 
-// Reflectance of a dielectric for its model at cos θi, with cos θt from Snell's law (empty:
-// total internal reflection), and relative index eta (Constant, Fresnel, Fresnel-s,
-// Fresnel-p, Schlick); 1 on total internal reflection for the physical models. Written
-// over the scalar type (experiments count its arithmetic).
+// One sampled continuation of a path (stochastic integrator): the new direction (to be
+// normalised by the caller) and the factor the path's throughput is multiplied by.
+struct Scatter {
+    Vec3 dir;
+    Vec3 factor;
+};
+
+// ---- The dielectric node, over the scalar type -------------------------------------------
+
+// The mask type of a scalar (bool for doubles and counting scalars, LaneMask for Lanes).
 template <class S>
-S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, const std::optional<S>& cos_t, S eta) {
-    namespace gen = optics::generic;
-    switch (model) {
-        case ReflectanceModel::Constant: return constant;
-        case ReflectanceModel::Fresnel: return cos_t ? gen::fresnel_terms(cos_i, *cos_t, eta).R() : S(1.0);
-        case ReflectanceModel::FresnelS: return cos_t ? gen::fresnel_terms(cos_i, *cos_t, eta).Rs : S(1.0);
-        case ReflectanceModel::FresnelP: return cos_t ? gen::fresnel_terms(cos_i, *cos_t, eta).Rp : S(1.0);
-        case ReflectanceModel::Schlick: return cos_t ? gen::schlick(cos_i, eta) : S(1.0);
+using MaskFor = decltype(std::declval<S>() >= std::declval<S>());
+
+// m ? a() : b(): one ray evaluates the branch it takes; a packet evaluates both and blends
+// (geometry/width.h select), each lane getting the one-ray answer.
+template <class M, class A, class B>
+auto choose(const M& m, A&& a, B&& b) {
+    if constexpr (std::is_same_v<M, bool>) {
+        return m ? a() : b();
+    } else {
+        return select(m, a(), b());
     }
-    return S(1.0);
 }
-template <class S>
-S dielectric_reflectance(ReflectanceModel model, S constant, S cos_i, S eta) {
-    return dielectric_reflectance(model, constant, cos_i, optics::generic::cos_transmitted(cos_i, eta), eta);
+
+// The largest component: Eigen's maxCoeff for vectors that have one (width.h for lanes).
+template <class V>
+auto max_coeff(const V& v) -> decltype(v.maxCoeff()) {
+    return v.maxCoeff();
 }
 
 // The largest of three values (Eigen's maxCoeff of a 3-vector: max(max(x, y), z)), over
@@ -109,44 +130,31 @@ S largest_of(const S& x, const S& y, const S& z) {
     return max_of(max_of(x, y), z);
 }
 
-// POV-Ray 3.7's refraction test (trace.cpp ComputeRefraction): the greyscale of the
-// surface's filter colour f = (1 − R)·filter under the weights `grey` (RED, GREEN and
-// BLUE_INTENSITY), |f·grey| at most 1 (fmin(1, ·): a NaN gives 1). A refracted ray is spawned
-// only where it exceeds adc_bailout; its adc weight is largest_of(|f|). Over the scalar type.
+// Reflectance of a dielectric for its model at cos θi, with cos θt from Snell's law valid
+// where the ray is not totally reflected (Constant, Fresnel, Fresnel-s, Fresnel-p,
+// Schlick). A constant ks is the model's value everywhere.
 template <class S>
-S pov_filter_greyscale(const S (&f)[3], const Vec3& grey) {
-    using std::abs;
-    using optics::generic::min_of;
-    return min_of(S(abs(f[0] * S(grey[0]) + f[1] * S(grey[1]) + f[2] * S(grey[2]))), S(1.0));
+S model_reflectance(ReflectanceModel model, S constant, S cos_i, S cos_t, S eta) {
+    namespace gen = optics::generic;
+    switch (model) {
+        case ReflectanceModel::Constant: return constant;
+        case ReflectanceModel::Fresnel: return gen::fresnel_terms(cos_i, cos_t, eta).R();
+        case ReflectanceModel::FresnelS: return gen::fresnel_terms(cos_i, cos_t, eta).Rs;
+        case ReflectanceModel::FresnelP: return gen::fresnel_terms(cos_i, cos_t, eta).Rp;
+        case ReflectanceModel::Schlick: return gen::schlick(cos_i, eta);
+    }
+    return S(1.0);
 }
 
-// A dielectric node in the physical mode (Yasuda 1984 §3.1.3 ③ and ④): reflected and
-// refracted directions (unit), the reflectance R, and the refracted branch's colour and
-// threshold factors. Written over the vector type V (Scalar, dot, normalized, maxCoeff,
-// cwiseProduct); refract renders with V = Vec3 and experiments/yasuda_cost.cpp counts
-// the arithmetic of this same function.
-template <class V>
-struct DielectricNode {
-    using S = typename V::Scalar;
-    V reflected;
-    std::optional<V> refracted;  // empty on total internal reflection
-    S R;
-    V transmit_factor;           // (1 − R) · filter
-    S transmit_bailout;          // its largest component
-    // Whether light is transmitted: the refracted branch exists and carries some of it.
-    bool transmits() const { return refracted && R < S(1.0); }
-};
-
-// What a dielectric node's branches depend on: cos θi, cos θt by Snell's law (empty: total
-// internal reflection) and the reflectance R (1 on total internal reflection, whatever the
-// model: a constant ks too, Whitted's Fig. 9).
+// What a dielectric node's branches depend on: cos θi, cos θt by Snell's law (meaningful
+// where `tir` is false: total internal reflection) and the reflectance R (1 on total
+// internal reflection, whatever the model: a constant ks too, Whitted's Fig. 9).
 template <class S>
 struct DielectricTerms {
-    S cos_i;
-    std::optional<S> cos_t;
-    S R;
+    S cos_i, cos_t, R;
+    MaskFor<S> tir;
     // Whether light is transmitted: a refracted branch exists and carries some of it.
-    bool transmits() const { return cos_t && R < S(1.0); }
+    MaskFor<S> transmits() const { return !tir && (R < S(1.0)); }
 };
 template <class V>
 DielectricTerms<typename V::Scalar> dielectric_terms(const V& dir, const V& normal, typename V::Scalar eta,
@@ -154,9 +162,18 @@ DielectricTerms<typename V::Scalar> dielectric_terms(const V& dir, const V& norm
     using S = typename V::Scalar;
     namespace gen = optics::generic;
     const S cos_i = gen::cos_incident(dir, normal);
-    const std::optional<S> cos_t = gen::cos_transmitted(cos_i, eta);  // Snell's law, once
-    return {cos_i, cos_t, cos_t ? dielectric_reflectance(model, constant, cos_i, cos_t, eta) : S(1.0)};
+    const S sin2_t = gen::sin2_transmitted(cos_i, eta);  // Snell's law, once
+    const MaskFor<S> tir = sin2_t >= S(1.0);
+    if constexpr (std::is_same_v<MaskFor<S>, bool>) {
+        if (tir) return {cos_i, S(0.0), S(1.0), tir};
+        const S cos_t = gen::cos_of_sin2(sin2_t);
+        return {cos_i, cos_t, model_reflectance(model, constant, cos_i, cos_t, eta), tir};
+    } else {
+        const S cos_t = gen::cos_of_sin2(sin2_t);  // NaN in the lanes under total internal reflection
+        return {cos_i, cos_t, select(tir, S(1.0), model_reflectance(model, constant, cos_i, cos_t, eta)), tir};
+    }
 }
+
 // The node's two directions, unit length. Rays are unit length by convention: renormalise,
 // or the rounding error of |dir| grows about tenfold per bounce in a chain of internal
 // reflections (the sphere intersection assumes |dir| = 1, so the hit leaves the surface and
@@ -167,20 +184,36 @@ V reflected_unit(const V& dir, const V& normal) {
 }
 template <class V>
 V refracted_unit(const V& dir, const V& normal, const DielectricTerms<typename V::Scalar>& t, typename V::Scalar eta) {
-    return optics::generic::refracted_direction(dir, normal, t.cos_i, *t.cos_t, eta).normalized();
+    return optics::generic::refracted_direction(dir, normal, t.cos_i, t.cos_t, eta).normalized();
 }
+
+// A dielectric node in the physical mode (Yasuda 1984 §3.1.3 ③ and ④): reflected and
+// refracted directions (unit; `refracted` meaningful where the node transmits), the
+// reflectance R, and the refracted branch's colour and threshold factors.
+template <class V>
+struct DielectricNode {
+    using S = typename V::Scalar;
+    V reflected, refracted;
+    S R;
+    V transmit_factor;   // (1 − R) · filter
+    S transmit_bailout;  // its largest component
+    MaskFor<S> tir;
+    // Whether light is transmitted: the refracted branch exists and carries some of it.
+    MaskFor<S> transmits() const { return !tir && (R < S(1.0)); }
+};
 
 template <class V>
 DielectricNode<V> dielectric_node(const V& dir, const V& normal, typename V::Scalar eta, ReflectanceModel model,
                                   typename V::Scalar constant, const V& filter) {
     using S = typename V::Scalar;
     const DielectricTerms<S> t = dielectric_terms(dir, normal, eta, model, constant);
-    DielectricNode<V> n{reflected_unit(dir, normal), std::nullopt, t.R, V(), S(0.0)};
-    if (t.cos_t) {
-        n.transmit_factor = (S(1.0) - t.R) * filter;
-        n.transmit_bailout = n.transmit_factor.maxCoeff();
-        n.refracted = refracted_unit(dir, normal, t, eta);
+    DielectricNode<V> n{reflected_unit(dir, normal), V(), t.R, V(), S(0.0), t.tir};
+    if constexpr (std::is_same_v<MaskFor<S>, bool>) {
+        if (t.tir) return n;
     }
+    n.transmit_factor = (S(1.0) - t.R) * filter;
+    n.transmit_bailout = max_coeff(n.transmit_factor);
+    n.refracted = refracted_unit(dir, normal, t, eta);
     return n;
 }
 
@@ -197,45 +230,62 @@ Attenuation<V> attenuate(const V& weight, typename V::Scalar bailout, const V& f
     return {weight.cwiseProduct(factor), bailout * bailout_factor};
 }
 
-// POV-Ray 3.7's interior fading as the exporter writes absorption (fade_distance 1,
-// fade_power 1001: the exponential form, fade_color 1 − α per channel; trace.cpp
-// ComputeLightedTexture): f = exp(−(1 − C)·d/D) with C and D stored in single precision
-// and the product and exp rounded to single precision, over a segment of length d.
-Vec3 pov_fade(const Vec3& alpha, double distance);
-
-// The interaction of each kind at hit h of `ray`.
-Interaction interact(const material::Diffuse& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-Interaction interact(const material::Lambertian& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-Interaction interact(const material::Mirror& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-Interaction interact(const material::Metal& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-Interaction interact(const material::Emissive& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-Interaction interact(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-// A uniaxial crystal: biref::split_at_interface's beams (core/birefringence.h). Natural
-// light: each branch's factor is its power for unpolarised incidence (a crystal wave: the
-// power of that wave) times the filter on transmission; exact polarisation: its Mueller
-// matrix, for an eye pass (c.adjoint) the one of the reversed path, light arriving along
-// the child's ray and leaving along the parent's (biref::reversed, reciprocity).
-Interaction interact(const material::Uniaxial& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c);
-
-// One sampled continuation of a path (stochastic integrator): the new direction and the
-// factor the path's throughput is multiplied by; empty when the path is absorbed.
-struct Scatter {
-    Vec3 dir;
-    Vec3 factor;
+// A dielectric node's two branches over the scalar type, in either mode (the physical node
+// above, or POV-Ray's, CompatRules::dielectric): branch 0 the reflection (POV-Ray: or the
+// refraction turned into a mirror ray), branch 1 the refraction (POV-Ray's split: or a
+// band's mirror ray); `exists` where each is spawned, before the walker's threshold and
+// limits.
+template <class V>
+struct NodeBranches {
+    using S = typename V::Scalar;
+    V dir[2], factor[2];
+    S bailout[2];
+    MaskFor<S> exists[2];
+    S reflectance;              // R of the split (1 where the refraction turned into a mirror ray)
+    MaskFor<S> split_mirror{};  // POV-Ray's split: branch 1 is a band's mirror ray
 };
-// Random scattering of the kinds that scatter randomly (RTIOW: Lambertian, fuzzy metal);
-// `pigment` is the Lambertian's albedo at the hit. Empty optional: absorbed.
-std::optional<Scatter> scatter(const material::Lambertian& m, const Vec3& pigment, const SurfaceHit& h, Rng& rng);
-std::optional<Scatter> scatter(const material::Metal& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
-// RTIOW's dielectric in the physical mode: reflection with probability R, else refraction
-// (the filter colour), the throughput unweighted by R; the node's R (dielectric_node), the
-// chosen direction alone computed. Like the other kinds' scatters, the direction is left
-// for the caller to normalise (normalised, it is dielectric_node's).
-Scatter scatter(const material::Dielectric& m, const SurfaceHit& h, const Ray& ray, Rng& rng);
-// One branch of an interaction chosen at random (RTIOW's dielectric: reflection with
-// probability R, else refraction, the throughput unweighted by R; a mirror's single
-// branch with its colour factor).
-std::optional<Scatter> sample_branch(const Material& m, const Interaction& in, Rng& rng);
+// Where a dielectric node is: the ray's direction and the normal on its incident side, the
+// segment's length and side (POV-Ray's fading), and the relative indices, the ray's (a
+// band's) and the material's nominal one.
+template <class V>
+struct NodeAt {
+    using S = typename V::Scalar;
+    V dir, normal;
+    S t;
+    MaskFor<S> entering;
+    S eta, eta_nominal;
+};
+// The physical node's branches.
+template <class V>
+NodeBranches<V> physical_branches(const DielectricNode<V>& d) {
+    using S = typename V::Scalar;
+    NodeBranches<V> b;
+    b.dir[0] = d.reflected;
+    b.factor[0] = splat<S>(d.R);
+    b.bailout[0] = d.R;
+    b.exists[0] = all_lanes<S>(true);
+    b.exists[1] = d.transmits();
+    b.dir[1] = d.refracted;
+    b.factor[1] = d.transmit_factor;
+    b.bailout[1] = d.transmit_bailout;
+    b.reflectance = d.R;
+    b.split_mirror = all_lanes<S>(false);
+    return b;
+}
+
+// The physical mode's dielectric interaction of one ray (Yasuda 1984 §3.1.3 ③④): the node's
+// branches, with Mueller matrices for exact polarisation.
+Interaction dielectric_interaction(const DielectricNode<Vec3>& d, const SurfaceHit& h, const Ray& ray,
+                                   const Vec3& filter, double eta, bool exact);
+
+// A mirror's single branch (perfect reflection, reflectivity `color`).
+Interaction mirror_interaction(const Vec3& color, const SurfaceHit& h, const Ray& ray, bool exact);
+
+// The leaf interaction: the branch ends here.
+inline Interaction leaf_interaction() {
+    Interaction n;
+    n.leaf = true;
+    return n;
+}
 
 }  // namespace refract

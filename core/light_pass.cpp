@@ -46,7 +46,7 @@ struct PhotonEnds {
     static Vec3 power(const TreeEntryT<LightStokes>& e) { return e.weight * e.pol.S[0]; }
 
     void leaf(const Entry& e, const SurfaceHit& h) {
-        if (!h.material->diffuse_surface()) return;
+        if (!lit_surface(*h.material)) return;
         const size_t obj = static_cast<size_t>(h.object - scene.objects.data());
         if (e.depth == 0 || !maps.by_object[obj]) return;
         const int el = maps.by_object[obj]->element(h.hit);
@@ -80,43 +80,39 @@ struct PhotonEnds {
     bool intercept(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, typename RayTreeWalkerT<P>::List& list) {
         const size_t mi = static_cast<size_t>(h.object->material);
         if (e.band >= 0 || !ctx.dispersive[mi]) return false;
+        // First transparent hit: one ray per band, each with the band's weight.
+        const std::vector<int>& bands = ctx.split_bands[mi];
+        const auto band_interaction = [&](int k) {
+            const size_t kb = static_cast<size_t>(k);
+            return w.tracer().interact(h, e.ray, stats, ctx.index[kb][mi], false, e.wave, ctx.all_wavelengths[kb]);
+        };
         if constexpr (std::is_same_v<P, NaturalLight>) {
-            if (SceneTracer::lanes() && w.tracer().lanes_apply()) {
-                split_in_packets(w, e, h, mi);
+            if (w.tracer().packets()) {
+                // The bands kLanes at a time: the same deposits, whose sums do not depend on the order.
+                w.walk_bands(
+                    static_cast<int>(bands.size()),
+                    [&](auto& s, int i) {
+                        const int k = bands[static_cast<size_t>(i)];
+                        const Interaction in = band_interaction(k);
+                        for (int b = 0; b < in.branches && b < 2; ++b)
+                            s.push(e, h, in.branch[static_cast<size_t>(b)], in.transmitted[static_cast<size_t>(b)],
+                                   ctx.weights[static_cast<size_t>(k)], k);
+                    },
+                    *this,
+                    [&](int, const LossesT<double>& lost) {
+                        stats.lost_depth += lost.depth;
+                        stats.lost_limits += lost.limits;
+                        stats.lost_threshold += lost.threshold;
+                    });
                 return true;
             }
         }
-        // First transparent hit: one ray per band, each with the band's weight.
-        for (const int k : ctx.split_bands[mi]) {
-            const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[static_cast<size_t>(k)][mi], false,
-                                                       e.wave, ctx.all_wavelengths[static_cast<size_t>(k)]);
+        for (const int k : bands) {
+            const Interaction in = band_interaction(k);
             for (int b = 0; b < in.branches; ++b)
                 w.push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list, ctx.weights[static_cast<size_t>(k)], k);
         }
         return true;
-    }
-
-    // The same split with the bands walked kLanes at a time (RayTreeWalkerT::walk_lanes): the
-    // same deposits, whose sums do not depend on the order.
-    void split_in_packets(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, size_t mi) {
-        const std::vector<int>& bands = ctx.split_bands[mi];
-        FifoList<LaneEntry> packets;
-        for (size_t i0 = 0; i0 < bands.size(); i0 += kLanes) {
-            LaneEntry child[2];
-            LaneLosses lost;
-            for (int l = 0; l < kLanes && i0 + static_cast<size_t>(l) < bands.size(); ++l) {
-                const int k = bands[i0 + static_cast<size_t>(l)];
-                const size_t kb = static_cast<size_t>(k);
-                const Interaction in = w.tracer().interact(h, e.ray, stats, ctx.index[kb][mi], false, e.wave,
-                                                           ctx.all_wavelengths[kb]);
-                for (int b = 0; b < in.branches && b < 2; ++b)
-                    w.push_lane(child[b], l, e, h, in.branch[static_cast<size_t>(b)],
-                                in.transmitted[static_cast<size_t>(b)], lost, ctx.weights[kb], k);
-            }
-            w.queue(child, packets, *this);
-            w.walk_lanes(packets, *this, lost);
-            for (int l = 0; l < kLanes; ++l) w.add_losses(lost, l);
-        }
     }
 };
 
@@ -160,14 +156,14 @@ double illumination_elements(const Scene& scene) {
     const MapRegion region = map_region(targets, lp);
     double total = 0;
     for (const Object& o : scene.objects)
-        if (scene.materials[o.material].diffuse_surface())
+        if (lit_surface(scene.materials[static_cast<size_t>(o.material)]))
             total += std::visit([&](const auto& shape) { return elements_for(shape, region.half, lp.element_size); },
                                 o.shape);
     return total;
 }
 
 std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads,
-                                             const std::atomic<bool>* cancel) {
+                                             const std::atomic<bool>* cancel, const TraceOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
     const LightPassSettings& lp = scene.settings.light_pass;
     const RenderSettings& rs = scene.settings;
@@ -180,7 +176,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     for (size_t k = 0; k < scene.objects.size(); ++k) {
         const Object& o = scene.objects[k];
         const Material& m = scene.materials[o.material];
-        if (!m.diffuse_surface()) continue;
+        if (!lit_surface(m)) continue;
         try {
             maps->by_object[k] = std::visit(
                 [&](const auto& shape) { return map_for(shape, centre, region.half, lp.element_size); }, o.shape);
@@ -204,7 +200,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     // Fixed point: 2^40 units for the largest emitter's total power.
     acc.scale = max_power > 0 ? kFixedScale / max_power : 1.0;
     std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0}, facet_local{0}, facet_full{0};
-    SceneTracer tracer(scene);
+    SceneTracer tracer(scene, options);
     const TreeLimits limits = ctx.limits(rs);
     const bool exact = rs.polarisation == PolarisationModel::Exact;
 

@@ -18,14 +18,15 @@
 
 #include "core/illumination_map.h"
 #include "core/integrators/spectral.h"
+#include "core/trace_options.h"
 
 namespace refract {
 
-// Runs the light pass with scene.settings.light_pass on `threads` threads (0: all).
-// `cancel`, when given and set, stops the pass early (its maps are then incomplete; the
-// caller discards them).
+// Runs the light pass with scene.settings.light_pass on `threads` threads (0: all), searching
+// and walking as `options` say. `cancel`, when given and set, stops the pass early (its maps
+// are then incomplete; the caller discards them).
 std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralContext& ctx, int threads = 0,
-                                             const std::atomic<bool>* cancel = nullptr);
+                                             const std::atomic<bool>* cancel = nullptr, const TraceOptions& options = {});
 
 // The elements its illumination maps would hold, computed without allocating.
 double illumination_elements(const Scene& scene);

@@ -1,95 +1,24 @@
 #pragma once
-// Materials: one type per kind, each holding only its own fields. A Material is a name
-// and one of these kinds; what a kind does at a hit (its branches) lives with it in
-// core/interaction.h.
-#include <optional>
+// Materials: a Material is a name and one of the kinds of core/materials/, each a struct
+// holding only its own fields, with its rulebook beside it (core/material_rules.h lists the
+// rules). The list of kinds is here, once; every rule is visited over it, so a kind that
+// lacks a rule does not compile (check_kind names what it lacks).
+//
+// Adding a kind: core/materials/NAME.h (the struct, its scene-file form, its rules), its
+// entry in Material::Kind below, and its POV-Ray export or refusal
+// (validation/pov_export.cpp).
 #include <string>
 #include <variant>
 
-#include "core/spectrum/absorption.h"
-#include "core/spectrum/dispersion.h"
-#include "geometry/ray.h"
+#include "core/materials/dielectric.h"
+#include "core/materials/diffuse.h"
+#include "core/materials/emissive.h"
+#include "core/materials/lambertian.h"
+#include "core/materials/metal.h"
+#include "core/materials/mirror.h"
+#include "core/materials/uniaxial.h"
 
 namespace refract {
-
-enum class ReflectanceModel {
-    Constant,  // Whitted: ks = constant_reflectivity, kt = 1 − ks
-    Fresnel,   // exact, natural light (Yasuda eq. 7)
-    FresnelS,  // s-polarised only
-    FresnelP,  // p-polarised only
-    Schlick,   // RTIOW approximation
-};
-
-struct Checker {
-    Vec3 color2{0, 0, 0};  // the second colour; the first is the pigment's `color`
-    double size = 1;       // edge of one square (3D checker as in POV-Ray)
-};
-
-// A surface colour: plain, or a 3D checker of `color` and `checker->color2`.
-struct Pigment {
-    Vec3 color{1, 1, 1};
-    std::optional<Checker> checker;
-};
-
-namespace material {
-
-// POV-Ray convention: ambient·pigment + Σ diffuse·pigment·light·max(0, N·L).
-struct Diffuse {
-    Pigment pigment;
-    double diffuse = 1.0;  // POV-Ray `diffuse`
-    double ambient = 0.0;  // POV-Ray `ambient` (Whitted's Ia term)
-};
-
-// RTIOW: random diffuse bounce with albedo `pigment` (stochastic integrator); the tree
-// integrators light it directly as a Diffuse with diffuse 1, ambient 0.
-struct Lambertian {
-    Pigment pigment;
-};
-
-// Perfect mirror, reflectivity `color`.
-struct Mirror {
-    Vec3 color{1, 1, 1};
-};
-
-// RTIOW metal: reflection with fuzz (stochastic integrator; the tree takes the mirror
-// direction), albedo `color`.
-struct Metal {
-    Vec3 color{1, 1, 1};
-    double fuzz = 0.0;
-};
-
-// Highlight light: a surface that shines `color` (tens of times brighter than lights).
-struct Emissive {
-    Vec3 color{1, 1, 1};
-};
-
-// Smooth transparent interface with the surrounding air.
-struct Dielectric {
-    double ior = 1.5;  // index relative to the surrounding air (nominal when dispersive)
-    ReflectanceModel reflectance = ReflectanceModel::Fresnel;
-    double constant_reflectivity = 0.0;  // Constant model
-    Vec3 filter{1, 1, 1};                // transmitted colour per crossing
-    // Index as a function of wavelength (catalogue name or model in the scene file);
-    // `ior` stays the nominal index (Dispersion::nominal() when `ior` is absent).
-    std::optional<spectrum::Dispersion> dispersion;
-    // Beer–Lambert absorption inside (per scene unit); none: clear.
-    std::optional<spectrum::Absorption> absorption;
-};
-
-// A uniaxial crystal (core/birefringence.h, docs/birefringence.md) in the air: every ray
-// splits into an ordinary and an extraordinary one. The indices of the two rays as
-// functions of wavelength; the optic axis (unit, in the scene's frame).
-struct Uniaxial {
-    spectrum::Dispersion ordinary, extraordinary;
-    Vec3 optic_axis{0, 0, 1};
-    Vec3 filter{1, 1, 1};  // transmitted colour per crossing
-    std::string crystal;   // the catalogue crystal, or empty
-    // The medium at wavelength λ (nm); at the sodium D line when λ <= 0 (an RGB ray).
-    double n_o(double lambda_nm) const { return ordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
-    double n_e(double lambda_nm) const { return extraordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
-};
-
-}  // namespace material
 
 struct Material {
     using Kind = std::variant<material::Diffuse, material::Lambertian, material::Mirror, material::Metal,
@@ -103,15 +32,62 @@ struct Material {
     const T* as() const { return std::get_if<T>(&kind); }
     template <class T>
     T* as() { return std::get_if<T>(&kind); }
-    // Surfaces that end a ray-tree branch and are shaded there (diffuse, Lambertian).
-    bool diffuse_surface() const { return is<material::Diffuse>() || is<material::Lambertian>(); }
     const material::Dielectric* dielectric() const { return as<material::Dielectric>(); }
-    // Transparent kinds (dielectric, uniaxial): the colour a crossing transmits; else null.
-    const Vec3* transparent_filter() const {
-        if (const auto* d = dielectric()) return &d->filter;
-        if (const auto* u = as<material::Uniaxial>()) return &u->filter;
-        return nullptr;
-    }
 };
+
+namespace material {
+template <class... K>
+constexpr bool check_kinds(const std::variant<K...>*) {
+    return (check_kind<K>() && ...);
+}
+static_assert(check_kinds(static_cast<const Material::Kind*>(nullptr)), "every material kind has every rule");
+}  // namespace material
+
+// The rules of a material, each visited over its kind (core/material_rules.h).
+inline Interaction interact(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c) {
+    return std::visit([&](const auto& k) { return interact(k, h, ray, c); }, m.kind);
+}
+inline std::optional<Scatter> sample(const Material& m, const SurfaceHit& h, const Ray& ray, const InteractionContext& c,
+                                     Rng& rng) {
+    return std::visit([&](const auto& k) { return sample(k, h, ray, c, rng); }, m.kind);
+}
+inline LeafLight leaf_light(const Material& m) {
+    return std::visit([](const auto& k) { return leaf_light(k); }, m.kind);
+}
+inline StochasticRole stochastic_role(const Material& m) {
+    return std::visit([](const auto& k) { return stochastic_role(k); }, m.kind);
+}
+inline const Vec3* shadow_filter(const Material& m) {
+    return std::visit([](const auto& k) { return shadow_filter(k); }, m.kind);
+}
+inline bool casts_shadow(const Material& m) {
+    return std::visit([](const auto& k) { return casts_shadow(k); }, m.kind);
+}
+inline bool dispersive(const Material& m) {
+    return std::visit([](const auto& k) { return dispersive(k); }, m.kind);
+}
+inline double band_index(const Material& m, double nm, const CompatRules& rules) {
+    return std::visit([&](const auto& k) { return band_index(k, nm, rules); }, m.kind);
+}
+inline const spectrum::Absorption* absorption(const Material& m) {
+    return std::visit([](const auto& k) { return absorption(k); }, m.kind);
+}
+inline bool in_packets(const Material& m) {
+    return std::visit([](const auto& k) { return in_packets(k); }, m.kind);
+}
+inline NodeRecord describe(const Material& m, const Interaction& in, const SurfaceHit& h, const Ray& ray,
+                           double band_ior) {
+    return std::visit([&](const auto& k) { return describe(k, in, h, ray, band_ior); }, m.kind);
+}
+inline void validate(const Material& m, const MaterialCheck& c) {
+    std::visit([&](const auto& k) { validate(k, c); }, m.kind);
+}
+// A leaf's surface is lit by the lights (diffuse, Lambertian): where illumination maps go.
+inline bool lit_surface(const Material& m) { return leaf_light(m).kind == LeafLight::Kind::Lit; }
+// A crossing transmits light: a dielectric or a crystal (counted as a branching node).
+inline bool transparent(const Material& m) { return shadow_filter(m) != nullptr; }
+
+// The kind named `type` read from r (the names listed in the error when unknown).
+Material::Kind read_material_kind(const JsonReader& r, const std::string& type, const std::string& file);
 
 }  // namespace refract

@@ -2,9 +2,12 @@
 // The ray-tree walker (Yasuda et al. 1984 §3.1.3): the tree is never stored; its
 // branches wait in a FIFO list, each with its cumulative attenuation, and a branch whose
 // attenuation falls below the pruning threshold, or that would exceed the depth or the
-// reflection/transmission limits, is dropped. The Fresnel-tree integrator, the spectral
-// eye pass and the light pass all walk their trees with this one walker; they differ only
-// in what happens where a branch ends (the `Ends` callbacks):
+// reflection/transmission limits, is dropped. Every tree of refract is walked here — the
+// Fresnel-tree and Whitted integrators, the spectral eye pass, the light pass, the far
+// field, `trace` — one loop over the entries of the list, whether an entry is one ray or
+// a packet of kLanes rays (TreeEntryT<P, Lanes>: the bands of one split, the wavelengths of
+// one photon). The integrators differ only in what happens where a branch ends (the `Ends`
+// callbacks):
 //   void background(const Entry&)              the branch left the scene
 //   void leaf(const Entry&, const SurfaceHit&) it met a diffuse surface or an emitter
 //   bool intercept(Walker&, const Entry&, const SurfaceHit&, List&)
@@ -14,39 +17,97 @@
 //        (0: the material's own)
 //   double wavelength(const Entry&)    the entry's wavelength in nm (0: an RGB ray), for
 //        the absorption along a segment inside a dielectric (Beer–Lambert)
+//   Ends& lane(int l)                  packets: lane l's ends (the same object for every
+//        lane where the sums do not depend on the order); optionally
+//   void background_lanes(const LaneEntry&, const LaneMask&)   the lanes of a packet that
+//        left the scene, at once
+//
+// A step (⑤–⑥) is the same for one ray and for a packet: the search, the background of
+// the rays that met nothing, Beer–Lambert over the segment (one place), then the node.
+// Packets compute the node of the lanes at one dielectric together — the very function a
+// single ray's interaction calls (CompatRules::dielectric, over the scalar type) — and
+// every other lane through its own interaction; each lane's children go to the packet of
+// their branch, so each lane meets its nodes, leaves and dropped branches in the order of
+// its own walk, and its light is the one-ray walk's to the last bit.
 //
 // Polarisation rides on the entries as a payload P (core/polarisation_state.h): nothing
 // for natural light, the camera-side Mueller matrix for an eye pass, the photon's Stokes
 // vector for a light pass; the walker updates it with each branch's Mueller matrix.
-#include <cstdint>
-#include <initializer_list>
+// Packets carry natural light.
 #include <array>
+#include <cstdint>
+#include <deque>
+#include <initializer_list>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "core/polarisation_state.h"
+#include "core/render_stats.h"
 #include "core/tracer.h"
-#include "geometry/lanes.h"
+#include "geometry/width.h"
 
 namespace refract {
 
-template <class P>
+// One entry of the list: one ray (S = double) or a packet of kLanes rays (S = Lanes), each
+// lane what one ray's entry holds; the depth is shared (a packet's lanes are at the same
+// place in their own trees: the same generation, the same branch of their parent).
+template <class P, class S = double>
 struct TreeEntryT {
-    Ray ray;
-    Vec3 weight;           // cumulative attenuation per channel (eq. 12's coefficients)
-    double bailout = 1.0;  // the scalar the threshold is compared with
-    // Counters in 16 bits (max_depth <= 10000, bands <= 1003): a list entry of the
-    // natural-light walk is 112 bytes (104 before the uniaxial crystals' `wave`).
+    RayOf<S> ray;
+    VecOf<S> weight;    // cumulative attenuation per channel (eq. 12's coefficients)
+    S bailout = S(1.0);  // the scalar the threshold is compared with
+    // Counters in 16 bits (max_depth <= 10000, bands <= 1003): an entry of the
+    // natural-light walk of one ray is 112 bytes.
     std::int16_t depth = 0;  // surface interactions before this ray
-    std::int16_t reflections = 0, transmissions = 0;
-    std::int16_t band = -1;  // spectral band of the ray; −1: an RGB ray
+    EachOf<S, std::int16_t> reflections{}, transmissions{};
+    EachOf<S, std::int16_t> band = EachOf<S, std::int16_t>{};  // spectral band; −1: an RGB ray
     biref::Wave wave = biref::Wave::Isotropic;  // inside a uniaxial crystal: o or e
-    double travelled = 0;    // path length from the tree's root to this ray's origin
+    S travelled = S(0.0);  // path length from the tree's root to this ray's origin
     [[no_unique_address]] P pol{};  // polarisation payload (none for natural light)
-    RayOrigin from{};        // the hit this ray leaves (none for a root)
+    EachOf<S, RayOrigin> from{};    // the hit this ray leaves (none for a root)
+    // Packets: the lanes in use (the others carry anything).
+    struct AllLanes {};
+    [[no_unique_address]] std::conditional_t<kPacketOf<S>, MaskOf<S>, AllLanes> active{};
+
+    TreeEntryT() {
+        if constexpr (!kPacketOf<S>) band = -1;
+    }
+    TreeEntryT(const Ray& r, const Vec3& w) : ray(r), weight(w) {
+        static_assert(!kPacketOf<S>, "a packet is filled lane by lane");
+        band = -1;
+    }
+
+    // Packets: lane l as a one-ray entry, and lane l set from one.
+    TreeEntryT<P> lane(int l) const {
+        static_assert(kPacketOf<S>, "a packet's lane");
+        TreeEntryT<P> e(Ray{ray.origin.lane(l), ray.dir.lane(l)}, weight.lane(l));
+        e.bailout = bailout[l];
+        e.depth = depth;
+        e.reflections = lane_of(reflections, l);
+        e.transmissions = lane_of(transmissions, l);
+        e.band = lane_of(band, l);
+        e.travelled = travelled[l];
+        e.from = lane_of(from, l);
+        return e;
+    }
+    void set(int l, const TreeEntryT<P>& e) {
+        static_assert(kPacketOf<S>, "a packet's lane");
+        ray.origin.set(l, e.ray.origin);
+        ray.dir.set(l, e.ray.dir);
+        weight.set(l, e.weight);
+        bailout[l] = e.bailout;
+        travelled[l] = e.travelled;
+        active[l] = true;
+        set_lane(band, l, e.band);
+        set_lane(reflections, l, e.reflections);
+        set_lane(transmissions, l, e.transmissions);
+        set_lane(from, l, e.from);
+        depth = e.depth;
+    }
 };
 using TreeEntry = TreeEntryT<NaturalLight>;
+using LaneEntry = TreeEntryT<NaturalLight, Lanes>;
 
 struct TreeLimits {
     static constexpr int kUnlimited = 1 << 30;
@@ -57,6 +118,9 @@ struct TreeLimits {
     double threshold = 0;  // RenderSettings::pruning_threshold()
     int max_depth = 16;
     int max_reflections = kUnlimited, max_transmissions = kUnlimited;
+    // Whitted's stored tree keeps the branches of zero weight (its nodes are counted as
+    // they are built); the other walks drop them.
+    bool keep_zero = false;
     // The spectral eye pass weighs a band's light by its RGB weight after the band's walk:
     // the weight a band's dropped branch would have carried is scaled by it. Bands past
     // the end (the shortcut's three test wavelengths) are not counted.
@@ -72,6 +136,7 @@ inline TreeLimits tree_limits(const RenderSettings& s) {
     TreeLimits l;
     l.threshold = s.pruning_threshold();
     l.max_depth = s.max_depth;
+    l.keep_zero = s.integrator == IntegratorKind::Whitted;
     return l;
 }
 
@@ -87,13 +152,6 @@ public:
     size_t size() const { return items_.size() - head_; }
     T& front() { return items_[head_]; }
     void push_back(const T& t) { items_.push_back(t); }
-    // A new entry at the back, to be filled in place (default-constructed), and its removal.
-    T& emplace_back() { return items_.emplace_back(); }
-    void pop_back() { items_.pop_back(); }
-    // Room for n more entries: front() stays where it is through n push_back()s.
-    void reserve_more(size_t n) {
-        if (items_.capacity() < items_.size() + n) items_.reserve(2 * (items_.size() + n));
-    }
     void pop_front() {
         if (++head_ == items_.size()) {
             items_.clear();
@@ -109,56 +167,16 @@ private:
     size_t head_ = 0;
 };
 
-// A packet of the walk (RayTreeWalkerT::walk_lanes): up to kLanes rays that differ in their
-// band (the wavelengths of one photon or of one split eye ray), each at the same place in
-// its own tree (the same generation, and the same branch of its parent's packet). Per lane
-// what a TreeEntry holds; shared the depth. Natural light only. Lanes not in use (`active`
-// false) carry anything.
-struct LaneEntry {
-    LaneVec3 origin, dir;
-    Lanes weight[3];  // per colour channel
-    Lanes bailout, travelled;
-    LaneMask active = LaneMask::Constant(false);
-    std::array<std::int16_t, kLanes> band, reflections, transmissions;
-    std::array<std::int32_t, kLanes> object, facet;  // the hit each ray leaves (-1: none)
-    std::int16_t depth = 0;
-
-    // Lanes inactive; the rest left as it is (a packet is filled before use, and a list of
-    // packets grows without zeroing it).
-    LaneEntry() {}
-
-    // Lane l as the walker's entry.
-    TreeEntry lane(int l) const {
-        const size_t i = static_cast<size_t>(l);
-        TreeEntry e{Ray{origin.lane(l), dir.lane(l)}, Vec3(weight[0][l], weight[1][l], weight[2][l]), bailout[l]};
-        e.depth = depth;
-        e.reflections = reflections[i];
-        e.transmissions = transmissions[i];
-        e.band = band[i];
-        e.travelled = travelled[l];
-        e.from = RayOrigin{object[i], facet[i]};
-        return e;
-    }
-    // Lane l takes entry e (at the packet's depth).
-    void set(int l, const TreeEntry& e) {
-        const size_t i = static_cast<size_t>(l);
-        origin.set(l, e.ray.origin);
-        dir.set(l, e.ray.dir);
-        for (int c = 0; c < 3; ++c) weight[c][l] = e.weight[c];
-        bailout[l] = e.bailout;
-        travelled[l] = e.travelled;
-        active[l] = true;
-        band[i] = e.band;
-        reflections[i] = e.reflections;
-        transmissions[i] = e.transmissions;
-        object[i] = e.from.object;
-        facet[i] = e.from.facet;
-        depth = e.depth;
-    }
+// The light dropped branches would have carried, per cause, over the scalar type: one
+// walk's sums (S = double) or each lane's (S = Lanes), each summed from zero in the order
+// the walk drops them.
+template <class S>
+struct LossesT {
+    S depth = S(0.0), limits = S(0.0), threshold = S(0.0);
 };
+using LaneLosses = LossesT<Lanes>;
 
-// Ends that take the lanes of a packet leaving the scene at once
-// (`void background_lanes(const LaneEntry&, const LaneMask&)`, as background() for each).
+// Ends that take the lanes of a packet leaving the scene at once.
 template <class Ends, class = void>
 struct BackgroundLanes : std::false_type {};
 template <class Ends>
@@ -166,17 +184,13 @@ struct BackgroundLanes<Ends, std::void_t<decltype(std::declval<Ends&>().backgrou
                                  std::declval<const LaneEntry&>(), std::declval<const LaneMask&>()))>>
     : std::true_type {};
 
-// The light each lane's dropped branches would have carried in a lane walk, per cause,
-// each summed from zero in the order walk() would drop them.
-struct LaneLosses {
-    Lanes depth{0.0}, limits{0.0}, threshold{0.0};
-};
-
 template <class P>
 class RayTreeWalkerT {
 public:
     using Entry = TreeEntryT<P>;
     using List = FifoList<Entry>;
+    using Packet = TreeEntryT<P, Lanes>;
+    using Packets = FifoList<Packet>;
 
     RayTreeWalkerT(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
         : tracer_(tracer), limits_(limits), stats_(stats) {}
@@ -184,41 +198,39 @@ public:
     const SceneTracer& tracer() const { return tracer_; }
     RenderStats& stats() { return stats_; }
 
-    // Walks the list to the end.
-    template <class Ends>
-    void walk(List& list, Ends& ends) {
+    // ⑤–⑥ walks the list to the end: its entries are single rays, or packets.
+    template <class S, class Ends>
+    void walk(FifoList<TreeEntryT<P, S>>& list, Ends& ends) {
         std::uint64_t peak = list.size(), walked = 0;
         while (!list.empty()) {
             if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
                 tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
             // ⑤ take the oldest entry and find its first surface.
-            Entry e = list.front();
+            TreeEntryT<P, S> e = list.front();
             list.pop_front();
-            const auto hit = tracer_.intersect(e.ray, stats_, e.from);
-            if (!hit) {
-                ends.background(e);
-                continue;
-            }
-            arrive(e, *hit, list, ends);
+            const auto h = search(e);
+            if (met(e, h, ends)) arrive(e, h, list, ends);
             if (list.size() > peak) peak = list.size();
         }
-        if (peak > stats_.peak_list) stats_.peak_list = peak;
-    }
-
-    // Entry e's ray has met its first surface at `hit` (found by the walk, or once for
-    // several entries along the same ray: the far field's wavelengths of one photon).
-    template <class Ends>
-    void arrive(Entry e, const SurfaceHit& hit, List& list, Ends& ends) {
-        if (tracer_.absorbing() && !hit.entering) {  // Beer–Lambert over the segment inside
-            if (const auto a = tracer_.absorption(hit, ends.wavelength(e))) {
-                e.weight = e.weight.cwiseProduct(*a);
-                e.bailout *= a->maxCoeff();
-            }
+        if constexpr (!kPacketOf<S>) {  // the longest list of one ray's tree
+            if (peak > stats_.peak_list) stats_.peak_list = peak;
         }
-        if (!ends.intercept(*this, e, hit, list)) expand(e, hit, ends.band_ior(e, hit), list, ends);
     }
 
-    // ②③④ the interaction at hit h: a leaf goes to the callback, branches to the list.
+    // Entry e's ray has met its first surface(s) at h (found by the walk, or once for several
+    // entries along the same ray: the far field's wavelengths of one photon): Beer–Lambert
+    // over the segment inside, then the callback's intercept, then the node.
+    template <class S, class H, class Ends>
+    void arrive(TreeEntryT<P, S> e, const H& h, FifoList<TreeEntryT<P, S>>& list, Ends& ends) {
+        absorb(e, h, ends);
+        if constexpr (!kPacketOf<S>) {
+            if (ends.intercept(*this, e, hit_of(h), list)) return;
+        }
+        expand(e, h, list, ends);
+    }
+
+    // ②③④ the interaction at hit h of one ray: a leaf goes to the callback, branches to
+    // the list (the band's index `band_ior`, 0: the material's own).
     template <class Ends>
     void expand(const Entry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
         const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior, false, e.wave, ends.wavelength(e),
@@ -241,106 +253,315 @@ public:
     // The same for a branch `br` with Mueller matrix M (read only with exact polarisation).
     bool push(const Entry& e, const SurfaceHit& h, const Branch& br, const polar::Mueller& M, bool transmitted,
               List& list, const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
-        const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, br.factor, br.bailout_factor);
-        const int refl = e.reflections + (transmitted ? 0 : 1), trans = e.transmissions + (transmitted ? 1 : 0);
-        if (const Cut c = cut(e.depth, refl, trans, a.bailout); c != Cut::Kept) {
-            count(c) += dropped(e, h, br, a.weight.cwiseProduct(tint), M, band);
-            return false;
-        }
-        list.push_back({br.ray, a.weight.cwiseProduct(tint), a.bailout, static_cast<std::int16_t>(e.depth + 1),
-                        static_cast<std::int16_t>(refl), static_cast<std::int16_t>(trans),
-                        static_cast<std::int16_t>(band == -2 ? e.band : band), br.wave, e.travelled + h.hit.t,
-                        descend(e.pol, h.normal, e.ray.dir, M, br.frame_parent, br.frame_child), tracer_.origin_of(h)});
+        Entry c;
+        const Extra x{tint, band, &M, br.wave, &br.frame_parent, &br.frame_child};
+        if (!make_child(c, e, h, br.ray.dir, br.factor, br.bailout_factor, transmitted, x, sink_)) return false;
+        list.push_back(c);
         return true;
     }
 
-    // ⑤–⑥ on packets (natural light): the rays of each packet are searched together
-    // (SceneTracer::intersect_lanes); where they meet the same isotropic dielectric (physical
-    // mode, Fresnel reflectance) its node is computed on all those lanes at once, from the
-    // same laws; every other lane's hit goes through its own interaction, leaf or node, one
-    // lane at a time. A lane's children go to the packet of their branch, so each lane meets
-    // its nodes and leaves in the order walk() meets them for its ray, and its tree, its
-    // light and its losses are walk()'s to the last bit. `ends.lane(l)` are lane l's ends
-    // (the same object for all when their sums do not depend on order), which must not
-    // intercept band rays; `lost` gathers what each lane's dropped branches carried, which
-    // the caller adds to the walker's sums (add_losses).
-    template <class LaneEnds>
-    void walk_lanes(FifoList<LaneEntry>& list, LaneEnds& ends, LaneLosses& lost) {
-        static_assert(std::is_same_v<P, NaturalLight>, "lane walks carry natural light");
-        std::uint64_t walked = 0;
-        while (!list.empty()) {
-            if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
-                tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
-            list.reserve_more(2);  // p's children: p stays in place until it is popped
-            const LaneEntry& p = list.front();
-            const SceneTracer::LaneHits h = tracer_.intersect_lanes(p.origin, p.dir, p.active, p.object, p.facet, stats_);
-            const LaneMask missed = p.active && !h.hit;
-            if (missed.any()) background_lanes(p, missed, ends);
-            arrive_lanes(p, h, list, ends, lost);
-            list.pop_front();
-        }
-    }
-
-    // Packet p has met its surfaces at h (found by walk_lanes, or once for all lanes): as
-    // arrive() on every lane (Beer–Lambert over the segment inside, then the interaction).
-    template <class LaneEnds>
-    void arrive_lanes(const LaneEntry& p, const SceneTracer::LaneHits& h, FifoList<LaneEntry>& list, LaneEnds& ends,
-                      LaneLosses& lost) {
-        const LaneMask at = p.active && h.hit;
-        if (!at.any()) return;
-        if (!tracer_.absorbing()) return expand_lanes(p, at, h, list, ends, lost);
-        LaneEntry q = p;
-        for (int l = 0; l < kLanes; ++l) {
-            if (!at[l] || h.entering[l]) continue;
-            const TreeEntry e = p.lane(l);
-            if (const auto a = tracer_.absorption(tracer_.surface_hit(h, l), ends.lane(l).wavelength(e))) {
-                for (int c = 0; c < 3; ++c) q.weight[c][l] = e.weight[c] * (*a)[c];
-                q.bailout[l] = e.bailout * a->maxCoeff();
+    // The subtrees of `n` bands, walked kLanes at a time (packets: the scene's tracer allows
+    // them and the walk carries natural light) or one by one: `seed(s, i)` starts band i's
+    // subtree through the BandSeed s (arrive or expand an entry at a hit, or push a branch);
+    // `ends` are either one ends object for every band (whose sums do not depend on the
+    // order) or a function giving band i's; `done(i, losses)` is called in band order after
+    // band i's walk, with the light its dropped branches carried (summed from zero).
+    // `one_by_one`: never in packets.
+    class BandSeed;
+    template <class Seed, class Ends, class Done>
+    void walk_bands(int n, Seed&& seed, Ends&& ends, Done&& done, bool one_by_one = false) {
+        if constexpr (std::is_same_v<P, NaturalLight>) {
+            if (!one_by_one && tracer_.packets()) {
+                Scratch<Packets> scratch(packet_lists_);  // reused: it allocates only while it grows
+                Packets& packets = scratch.list;
+                LaneLosses* const saved = packet_lost_;
+                for (int i0 = 0; i0 < n; i0 += kLanes) {
+                    const int m = std::min(kLanes, n - i0);
+                    auto&& lanes = lane_ends(ends, i0);
+                    LaneLosses lost;
+                    packet_lost_ = &lost;
+                    BandSeed s(*this, lost);
+                    for (int l = 0; l < m; ++l) {
+                        s.lane_ = l;
+                        seed(s, i0 + l);
+                    }
+                    s.start(packets, lanes);
+                    walk(packets, lanes);
+                    for (int l = 0; l < m; ++l)
+                        done(i0 + l, LossesT<double>{lost.depth[l], lost.limits[l], lost.threshold[l]});
+                }
+                packet_lost_ = saved;
+                return;
             }
         }
-        expand_lanes(q, at, h, list, ends, lost);
+        Scratch<List> scratch(lists_);
+        List& list = scratch.list;
+        for (int i = 0; i < n; ++i) {
+            LossesT<double> lost;
+            const Sink saved = sink_;
+            sink_ = Sink{&lost.depth, &lost.limits, &lost.threshold};
+            auto&& one = band_ends(ends, i);
+            BandSeed s(*this, list);
+            seed(s, i);
+            s.start(list, one);
+            walk(list, one);
+            sink_ = saved;
+            done(i, lost);
+        }
     }
 
-    // ②③④ on the lanes `at` of packet p at their hits h: as expand() on every lane.
-    template <class LaneEnds>
-    __attribute__((flatten)) void expand_lanes(const LaneEntry& p, const LaneMask& at, const SceneTracer::LaneHits& h,
-                                               FifoList<LaneEntry>& list, LaneEnds& ends, LaneLosses& lost) {
-        // The lanes whose node is computed together: those at the first lane's isotropic
-        // Fresnel dielectric in the physical mode, with natural light.
-        const RenderSettings& settings = tracer_.settings();
-        const bool natural = settings.polarisation != PolarisationModel::Exact;
-        const bool pov = settings.compat == Compat::PovRay;
+    // A band's start (walk_bands): one ray's, or lane lane_ of a packet's.
+    class BandSeed {
+    public:
+        // Entry e (at its band) arriving at hit h: Beer–Lambert, then its node.
+        void arrive(const Entry& e, const SurfaceHit& h) { take(e, h, true, 0.0); }
+        // Entry e (at its band) at hit h: its node with the band's index (0: the material's).
+        void expand(const Entry& e, const SurfaceHit& h, double band_ior) { take(e, h, false, band_ior); }
+        // Entry e's child along branch br at hit h (natural light), tinted and at `band`: a
+        // reflected branch first, a transmitted one after it.
+        void push(const Entry& e, const SurfaceHit& h, const Branch& br, bool transmitted, const Vec3& tint, int band) {
+            static const polar::Mueller none = polar::Mueller::Identity();  // natural light: not read
+            if (!lost_) {
+                w_.push(e, h, br, none, transmitted, *list_, tint, band);
+                return;
+            }
+            pushed_ = true;
+            Entry c;
+            const Extra x{tint, band, &none, br.wave, &br.frame_parent, &br.frame_child};
+            const Sink one{&lost_->depth[lane_], &lost_->limits[lane_], &lost_->threshold[lane_]};
+            if (w_.make_child(c, e, h, br.ray.dir, br.factor, br.bailout_factor, transmitted, x, one))
+                children_[transmitted ? 1 : 0].set(lane_, c);
+        }
+
+    private:
+        friend class RayTreeWalkerT;
+        BandSeed(RayTreeWalkerT& w, List& list) : w_(w), list_(&list) {}
+        BandSeed(RayTreeWalkerT& w, LaneLosses& lost) : w_(w), lost_(&lost) {}
+
+        void take(const Entry& e, const SurfaceHit& h, bool absorb, double band_ior) {
+            hit_ = h;
+            absorb_ = absorb;
+            if (lost_) {
+                entry_.set(lane_, e);
+                return;
+            }
+            one_ = e;
+            band_ior_ = band_ior;
+            has_one_ = true;
+        }
+
+        // The seeded start into `list` (one ray) with `ends`.
+        template <class Ends>
+        void start(List& list, Ends& ends) {
+            if (!has_one_) return;
+            if (absorb_) {
+                w_.arrive(one_, hit_, list, ends);
+            } else {
+                w_.expand(one_, hit_, band_ior_, list, ends);
+            }
+        }
+        // The seeded lanes into `packets` with lane ends `ends`.
+        template <class Ends>
+        void start(Packets& packets, Ends& ends) {
+            if (pushed_) {
+                w_.queue(children_, packets, ends);
+                return;
+            }
+            if (!entry_.active.any()) return;
+            const SceneTracer::LaneHits h = SceneTracer::lanes_of(hit_);
+            if (absorb_) w_.absorb(entry_, h, ends);
+            w_.expand_packet(entry_, entry_.active, h, packets, ends, *lost_);
+        }
+
+        RayTreeWalkerT& w_;
+        List* list_ = nullptr;
+        LaneLosses* lost_ = nullptr;
+        int lane_ = 0;
+        Entry one_;
+        SurfaceHit hit_;
+        bool absorb_ = false, has_one_ = false, pushed_ = false;
+        double band_ior_ = 0;
+        Packet entry_;
+        Packet children_[2];
+    };
+
+private:
+    // Lists for band walks, one per level of nesting (a band walk's RGB mirror ray may split
+    // again), reused so that they allocate only while they grow.
+    template <class L>
+    struct Scratch {
+        std::deque<L>& pool;
+        L& list;
+        explicit Scratch(std::pair<std::deque<L>, size_t>& p) : pool(p.first), list(take(p)), depth(p.second) {}
+        ~Scratch() { --depth; }
+        static L& take(std::pair<std::deque<L>, size_t>& p) {
+            if (p.second == p.first.size()) p.first.emplace_back();
+            return p.first[p.second++];
+        }
+        size_t& depth;
+    };
+    std::pair<std::deque<List>, size_t> lists_{};
+    std::pair<std::deque<Packets>, size_t> packet_lists_{};
+
+    // Where a walk sums the light of its dropped branches (the stats, or a band's own sums).
+    struct Sink {
+        double *depth, *limits, *threshold;
+    };
+    // What a one-ray child carries besides its ray and factors.
+    struct Extra {
+        Vec3 tint;
+        int band;
+        const polar::Mueller* M;
+        biref::Wave wave;
+        const Vec3 *frame_parent, *frame_child;
+    };
+
+    // Lane ends of a band group: lane l is band i0 + l's.
+    template <class EndsOf>
+    struct LaneEnds {
+        EndsOf& ends_of;
+        int i0;
+        auto& lane(int l) { return ends_of(i0 + l); }
+    };
+    // A band group's lane ends, and band i's ends: from a function of the band, or one
+    // ends object for all.
+    template <class Ends>
+    static decltype(auto) lane_ends(Ends& ends, int i0) {
+        if constexpr (std::is_invocable_v<Ends&, int>) {
+            return LaneEnds<Ends>{ends, i0};
+        } else {
+            return (ends);
+        }
+    }
+    template <class Ends>
+    static decltype(auto) band_ends(Ends& ends, int i) {
+        if constexpr (std::is_invocable_v<Ends&, int>) {
+            return ends(i);
+        } else {
+            return (ends);
+        }
+    }
+
+    // ⑤ the search: the nearest hit of one ray, or of each lane of a packet.
+    std::optional<SurfaceHit> search(const Entry& e) { return tracer_.intersect(e.ray, stats_, e.from); }
+    SceneTracer::LaneHits search(const Packet& p) {
+        return tracer_.intersect_lanes(p.ray.origin, p.ray.dir, p.active, p.from, stats_);
+    }
+    static const SurfaceHit& hit_of(const std::optional<SurfaceHit>& h) { return *h; }
+    static const SurfaceHit& hit_of(const SurfaceHit& h) { return h; }
+    // The rays that met nothing end at the background; true when any ray met a surface.
+    template <class Ends>
+    bool met(const Entry& e, const std::optional<SurfaceHit>& h, Ends& ends) {
+        if (!h) ends.background(e);
+        return h.has_value();
+    }
+    template <class Ends>
+    bool met(const Packet& p, const SceneTracer::LaneHits& h, Ends& ends) {
+        const LaneMask missed = p.active && !h.hit;
+        if (missed.any()) background_lanes(p, missed, ends);
+        return (p.active && h.hit).any();
+    }
+
+    // Beer–Lambert over the segment that ended inside an absorbing dielectric, lane by lane
+    // (the policy's: physical mode; POV-Ray fades in its node).
+    template <class Ends>
+    void absorb(Entry& e, const std::optional<SurfaceHit>& h, Ends& ends) {
+        absorb(e, *h, ends);
+    }
+    template <class Ends>
+    void absorb(Entry& e, const SurfaceHit& h, Ends& ends) {
+        if (!tracer_.absorbing() || h.entering) return;
+        if (const auto a = tracer_.absorption(h, ends.wavelength(e))) {
+            e.weight = e.weight.cwiseProduct(*a);
+            e.bailout *= a->maxCoeff();
+        }
+    }
+    template <class Ends>
+    void absorb(Packet& p, const SceneTracer::LaneHits& h, Ends& ends) {
+        if (!tracer_.absorbing()) return;
+        for_each_lane(p.active && h.hit && !h.entering, [&](int l) {
+            Entry e = p.lane(l);
+            absorb(e, tracer_.surface_hit(h, l), ends.lane(l));
+            p.weight.set(l, e.weight);
+            p.bailout[l] = e.bailout;
+        });
+    }
+
+    // ②③④ a one ray's node (expand, above) or a packet's.
+    template <class Ends>
+    void expand(const Entry& e, const std::optional<SurfaceHit>& h, List& list, Ends& ends) {
+        expand(e, *h, ends.band_ior(e, *h), list, ends);
+    }
+    template <class Ends>
+    void expand(const Packet& p, const SceneTracer::LaneHits& h, Packets& list, Ends& ends) {
+        static_assert(std::is_same_v<P, NaturalLight>, "packets carry natural light");
+        expand_packet(p, p.active && h.hit, h, list, ends, *packet_lost_);
+    }
+
+    // The lanes `at` of packet p at their hits h: the lanes at the first lane's dielectric
+    // through its node together, every other lane through its own interaction; the children
+    // queued by branch (reflected, then transmitted).
+    template <class Ends>
+    void expand_packet(const Packet& p, const LaneMask& at, const SceneTracer::LaneHits& h, Packets& list, Ends& ends,
+                       LaneLosses& lost) {
         const int first = at.first();
-        const Material* m0 = &tracer_.scene().materials[h.object[static_cast<size_t>(first)]->material];
-        const auto* d = m0->dielectric();
-        // POV-Ray mode: band rays (no split here) in an interior without fading.
-        const bool vector_node = natural && d && d->reflectance == ReflectanceModel::Fresnel && (!pov || !d->absorption);
+        const Material* m0 = &tracer_.scene().materials[static_cast<size_t>(h.object[static_cast<size_t>(first)]->material)];
+        const material::Dielectric* d = m0->dielectric();
         LaneMask together = LaneMask::Constant(false);
-        bool all_together = vector_node;
-        if (vector_node) {
+        if (d) {
             const Object* o0 = h.object[static_cast<size_t>(first)];
-            for (int l = 0; l < kLanes; ++l) {
+            for_each_lane(at, [&](int l) {
                 const Object* o = h.object[static_cast<size_t>(l)];
-                together[l] = at[l] && (o == o0 || &tracer_.scene().materials[o->material] == m0);
-            }
-            for (int l = 0; l < kLanes; ++l) all_together = all_together && together[l] == at[l];
+                together[l] = o == o0 || &tracer_.scene().materials[static_cast<size_t>(o->material)] == m0;
+            });
         }
-        // Lane walks carry isotropic media only (two branches at most per node).
-        LaneEntry child[2];
-        child[0].depth = child[1].depth = static_cast<std::int16_t>(p.depth + 1);
-        if (together.any()) node_lanes(p, together, h, *m0, *d, child, ends, lost);
-        // Every other lane through its own interaction.
-        for (int l = 0; l < kLanes && !all_together; ++l)
-            if (at[l] && !together[l]) interact_lane(p, l, h, child, ends, lost);
+        // Packets carry isotropic media only (two branches at most per node).
+        Packet child[2];
+        if (together.any()) node(p, together, h, *m0, *d, child, ends, lost);
+        const LaneMask rest = at && !together;
+        for_each_lane(rest, [&](int l) { interact_lane(p, l, h, child, ends, lost); });
         queue(child, list, ends);
     }
 
-    // Lane l of packet p at its hit through its own interaction, as expand(): a leaf to its
-    // ends, its children into the packets `child`.
-    template <class LaneEnds>
-    __attribute__((noinline)) void interact_lane(const LaneEntry& p, int l, const SceneTracer::LaneHits& h,
-                                                 LaneEntry (&child)[2], LaneEnds& ends, LaneLosses& lost) {
-        const TreeEntry e = p.lane(l);
+    // The node of dielectric d (material `mat`) on the lanes `m` of packet p: the policy's
+    // node over lanes (CompatRules::dielectric), both children into child[0] (reflected)
+    // and child[1] (refracted).
+    template <class Ends>
+    void node(const Packet& p, const LaneMask& m, const SceneTracer::LaneHits& h, const Material& mat,
+              const material::Dielectric& d, Packet (&child)[2], Ends& ends, LaneLosses& lost) {
+        stats_.tree_nodes += static_cast<std::uint64_t>(m.count());
+        const CompatRules& rules = tracer_.rules();
+        const double nominal = rules.nominal_index(d.ior);
+        // Each lane's index at its band (the ends' band_ior, a function of the band and the
+        // material), kept for the next node in the same material with the same bands.
+        std::array<std::int16_t, kLanes> bands;
+        for (int l = 0; l < kLanes; ++l) bands[static_cast<size_t>(l)] = m[l] ? p.band[static_cast<size_t>(l)] : -2;
+        if (&mat != ior_material_ || bands != ior_bands_) {
+            ior_material_ = &mat;
+            ior_bands_ = bands;
+            ior_ = Lanes(nominal);
+            const SurfaceHit h0 = tracer_.surface_hit(h, m.first());
+            for_each_lane(m, [&](int l) {
+                const double b = ends.lane(l).band_ior(p.lane(l), h0);
+                if (b > 0) ior_[l] = b;
+            });
+            inverse_ior_ = Lanes(1.0) / ior_;
+        }
+        const NodeAt<LaneVec3> at{p.ray.dir, h.normal, h.t, h.entering, select(h.entering, ior_, inverse_ior_),
+                                  select(h.entering, Lanes(nominal), Lanes(1.0 / nominal))};
+        const NodeBranches<LaneVec3> b = rules.dielectric(d, at, LaneVec3::broadcast(d.filter), false);
+        for (int k = 0; k < 2; ++k) {
+            const LaneMask on = m && b.exists[k];
+            if (on.any()) lanes_child(child[k], p, on, h, b.dir[k], b.factor[k], b.bailout[k], k == 1, lost);
+        }
+    }
+
+    // Lane l of packet p at its hit through its own interaction (a leaf to its ends, its
+    // children into the packets `child`), its losses into lane l of `lost`.
+    template <class Ends>
+    __attribute__((noinline)) void interact_lane(const Packet& p, int l, const SceneTracer::LaneHits& h,
+                                                 Packet (&child)[2], Ends& ends, LaneLosses& lost) {
+        const Entry e = p.lane(l);
         const SurfaceHit hl = tracer_.surface_hit(h, l);
         auto& el = ends.lane(l);
         const Interaction in = tracer_.interact(hl, e.ray, stats_, el.band_ior(e, hl), false, e.wave, el.wavelength(e));
@@ -348,221 +569,125 @@ public:
             el.leaf(e, hl);
             return;
         }
-        for (int b = 0; b < in.branches && b < 2; ++b)
-            push_lane(child[b], l, e, hl, in.branch[static_cast<size_t>(b)], in.transmitted[static_cast<size_t>(b)], lost);
-    }
-
-    // Lane l of packet `child` takes entry e's child along branch br (at hit h), unless
-    // push()'s rules drop it (its light then counted in lane l of `lost`); with push()'s
-    // tint and band. True when it was added.
-    __attribute__((noinline)) bool push_lane(LaneEntry& child, int l, const Entry& e, const SurfaceHit& h, const Branch& br, bool transmitted,
-                   LaneLosses& lost, const Vec3& tint = Vec3(1, 1, 1), int band = -2) {
         static const polar::Mueller none = polar::Mueller::Identity();  // natural light: not read
-        bool added = false;
-        as_lane(lost, l, [&] { added = push(e, h, br, none, transmitted, scratch_, tint, band); });
-        if (!added) return false;
-        child.set(l, scratch_.front());
-        scratch_.pop_front();
-        return true;
+        const Sink one{&lost.depth[l], &lost.limits[l], &lost.threshold[l]};
+        for (int b = 0; b < in.branches && b < 2; ++b) {
+            const Branch& br = in.branch[static_cast<size_t>(b)];
+            Entry c;
+            const Extra x{Vec3(1, 1, 1), -2, &none, br.wave, &br.frame_parent, &br.frame_child};
+            if (make_child(c, e, hl, br.ray.dir, br.factor, br.bailout_factor, in.transmitted[static_cast<size_t>(b)], x,
+                      one))
+                child[b].set(l, c);
+        }
     }
 
     // The packets `child` (in this order) onto the list, the lanes known to leave the scene
     // ended at once (as the walk would end them).
-    template <class LaneEnds>
-    void queue(LaneEntry (&child)[2], FifoList<LaneEntry>& list, LaneEnds& ends) {
-        for (LaneEntry& c : child) {
-            end_escaping(c, ends);
+    template <class Ends>
+    void queue(Packet (&child)[2], Packets& list, Ends& ends) {
+        for (Packet& c : child) {
+            if (!c.active.any()) continue;
+            const LaneMask gone = tracer_.escaping_lanes(c.from, c.ray.origin, c.ray.dir, c.active, stats_);
+            if (gone.any()) {
+                background_lanes(c, gone, ends);
+                c.active = c.active && !gone;
+            }
             if (c.active.any()) list.push_back(c);
         }
     }
-    // The lanes of packet c known to leave the scene (SceneTracer::escaping_lanes) end here,
-    // as the walk would end them.
-    template <class LaneEnds>
-    void end_escaping(LaneEntry& c, LaneEnds& ends) {
-        if (!c.active.any()) return;
-        const LaneMask gone = tracer_.escaping_lanes(c.object, c.origin, c.dir, c.active, stats_);
-        if (!gone.any()) return;
-        background_lanes(c, gone, ends);
-        c.active = c.active && !gone;
-    }
 
-    // Runs f with the walker's dropped-light sums started from zero, then added to what they
-    // were: one band's losses summed on their own, as add_losses() adds a lane's.
-    template <class F>
-    void own_losses(F&& f) {
-        const double d0 = stats_.lost_depth, l0 = stats_.lost_limits, t0 = stats_.lost_threshold;
-        stats_.lost_depth = stats_.lost_limits = stats_.lost_threshold = 0;
-        f();
-        stats_.lost_depth = d0 + stats_.lost_depth;
-        stats_.lost_limits = l0 + stats_.lost_limits;
-        stats_.lost_threshold = t0 + stats_.lost_threshold;
-    }
-
-    // Runs f with push()'s dropped light going to lane l of `lost` (a lane's own sums).
-    template <class F>
-    void as_lane(LaneLosses& lost, int l, F&& f) {
-        LaneLosses* const saved = lane_lost_;
-        const int saved_lane = lane_;
-        lane_lost_ = &lost;
-        lane_ = l;
-        f();
-        lane_lost_ = saved;
-        lane_ = saved_lane;
-    }
-    // Lane l's losses added to the walker's sums (a band's own sums, as walk()'s caller adds them).
-    void add_losses(const LaneLosses& lost, int l) {
-        stats_.lost_depth += lost.depth[l];
-        stats_.lost_limits += lost.limits[l];
-        stats_.lost_threshold += lost.threshold[l];
-    }
-
-private:
-    // Why push() drops a child: the threshold, the depth limit, the reflection/transmission
+    // Why a child is dropped: the threshold, the depth limit, the reflection/transmission
     // limits (in this order), or not at all.
     enum class Cut { Kept, Threshold, Depth, Limits };
     Cut cut(int depth, int refl, int trans, double bailout) const {
-        if (bailout <= 0 || bailout < limits_.threshold) return Cut::Threshold;
+        if (bailout < limits_.threshold || (bailout <= 0 && !limits_.keep_zero)) return Cut::Threshold;
         if (depth + 1 > limits_.max_depth) return Cut::Depth;
         if (refl > limits_.max_reflections || trans > limits_.max_transmissions) return Cut::Limits;
         return Cut::Kept;
     }
     // Counts a dropped child; the sum its light is added to.
-    double& count(Cut c) {
+    double& count(Cut c, const Sink& s) {
         if (c == Cut::Threshold) ++stats_.pruned;
         else ++stats_.depth_limited;
-        if (lane_lost_) {  // as_lane
-            Lanes& sum = c == Cut::Threshold ? lane_lost_->threshold : c == Cut::Depth ? lane_lost_->depth : lane_lost_->limits;
-            return sum[lane_];
-        }
-        return c == Cut::Threshold ? stats_.lost_threshold : c == Cut::Depth ? stats_.lost_depth : stats_.lost_limits;
+        return c == Cut::Threshold ? *s.threshold : c == Cut::Depth ? *s.depth : *s.limits;
     }
 
-    // The node of core/interaction.h dielectric_node on the lanes `m` of packet p, all at
-    // dielectric d (material `mat`), from the same laws: both children into child[0]
-    // (reflected) and child[1] (refracted), under push()'s rules.
-    template <class LaneEnds>
-    __attribute__((flatten)) void node_lanes(const LaneEntry& p, const LaneMask& m, const SceneTracer::LaneHits& h, const Material& mat,
-                    const material::Dielectric& d, LaneEntry (&child)[2], LaneEnds& ends, LaneLosses& lost) {
-        stats_.tree_nodes += static_cast<std::uint64_t>(m.count());
-        const int first = m.first();
-        // Each lane's index at its band (the ends' band_ior, a function of the band and the
-        // material), kept for the next node in the same material with the same bands.
-        std::array<std::int16_t, kLanes> bands;
-        for (int l = 0; l < kLanes; ++l) bands[static_cast<size_t>(l)] = m[l] ? p.band[static_cast<size_t>(l)] : -2;
-        const bool pov = tracer_.settings().compat == Compat::PovRay;
-        // POV-Ray stores an interior's ior in single precision (as dielectric interact()).
-        const double nominal = pov ? static_cast<double>(static_cast<float>(d.ior)) : d.ior;
-        if (&mat != ior_material_ || bands != ior_bands_) {
-            ior_material_ = &mat;
-            ior_bands_ = bands;
-            ior_ = Lanes(nominal);
-            const SurfaceHit h0 = tracer_.surface_hit(h, first);
-            for (int l = 0; l < kLanes; ++l) {
-                if (!m[l]) continue;
-                const double b = ends.lane(l).band_ior(p.lane(l), h0);
-                if (b > 0) ior_[l] = b;
+    // ⑥ the child c of one ray's entry e leaving hit h along `dir`: the parent's attenuation
+    // times `factor` (then the tint), unless the threshold or a limit drops it (its light
+    // then added to the sink). True when it is kept.
+    bool make_child(Entry& c, const Entry& e, const SurfaceHit& h, const Vec3& dir, const Vec3& factor, double bf,
+               bool transmitted, const Extra& x, const Sink& sink) {
+        const Attenuation<Vec3> a = attenuate(e.weight, e.bailout, factor, bf);
+        const int refl = e.reflections + (transmitted ? 0 : 1), trans = e.transmissions + (transmitted ? 1 : 0);
+        const Vec3 weight = a.weight.cwiseProduct(x.tint);
+        const Vec3 zero = Vec3::Zero();
+        const Vec3& xp = x.frame_parent ? *x.frame_parent : zero;
+        const Vec3& xc = x.frame_child ? *x.frame_child : zero;
+        if (const Cut why = cut(e.depth, refl, trans, a.bailout); why != Cut::Kept) {
+            const int k = x.band == -2 ? e.band : x.band;
+            if (k >= 0 && limits_.band_weights && static_cast<size_t>(k) >= limits_.band_weights->size()) {
+                count(why, sink) += 0.0;
+            } else {
+                count(why, sink) += band_weighted_mean(weight, k) * throughput(descend(e.pol, h.normal, e.ray.dir, *x.M, xp, xc));
             }
-            inverse_ior_ = Lanes(1.0) / ior_;
+            return false;
         }
-        namespace gen = optics::generic;
-        const Lanes eta = select(h.entering, ior_, inverse_ior_);  // as dielectric interact(): ior or 1 / ior
-        const Lanes cos_i = gen::cos_incident(p.dir, h.normal);
-        if (pov) return node_lanes_pov(p, m, h, d, child, nominal, eta, cos_i, lost);
-        const Lanes sin2_t = gen::sin2_transmitted(cos_i, eta);
-        const LaneMask tir = sin2_t >= Lanes(1.0);
-        const Lanes cos_t = gen::cos_of_sin2(sin2_t);  // NaN under total internal reflection
-        const Lanes R = select(tir, Lanes(1.0), gen::fresnel_terms(cos_i, cos_t, eta).R());
-        Lanes transmit[3];
-        for (int c = 0; c < 3; ++c) transmit[c] = (Lanes(1.0) - R) * Lanes(d.filter[c]);
-        const Lanes transmit_bailout = largest_of(transmit[0], transmit[1], transmit[2]);  // maxCoeff
-        const LaneMask refracts = m && !tir && (R < Lanes(1.0));
-        fill_child(child[0], p, h, m, gen::reflect(p.dir, h.normal).normalized(), {R, R, R}, R, false, lost);
-        if (refracts.any())
-            fill_child(child[1], p, h, refracts,
-                       gen::refracted_direction(p.dir, h.normal, cos_i, cos_t, eta).normalized(), transmit,
-                       transmit_bailout, true, lost);
+        c.ray = Ray{h.hit.point, dir};
+        c.weight = weight;
+        c.bailout = a.bailout;
+        c.depth = static_cast<std::int16_t>(e.depth + 1);
+        c.reflections = static_cast<std::int16_t>(refl);
+        c.transmissions = static_cast<std::int16_t>(trans);
+        c.band = static_cast<std::int16_t>(x.band == -2 ? e.band : x.band);
+        c.wave = x.wave;
+        c.travelled = e.travelled + h.hit.t;
+        c.pol = descend(e.pol, h.normal, e.ray.dir, *x.M, xp, xc);
+        c.from = tracer_.origin_of(h);
+        return true;
     }
-
-    // POV-Ray mode's dielectric node (core/interaction.cpp dielectric_pov) for band rays in
-    // an interior without fading, on the lanes `m`: Fresnel with the nominal index, the
-    // refraction and its total internal reflection with each band's (eta), a refraction
-    // spawned only when its filter's greyscale exceeds adc_bailout, and turned into a mirror
-    // ray where the band meets total internal reflection.
-    void node_lanes_pov(const LaneEntry& p, const LaneMask& m, const SceneTracer::LaneHits& h,
-                        const material::Dielectric& d, LaneEntry (&child)[2], double nominal, const Lanes& eta,
-                        const Lanes& cos_i, LaneLosses& lost) {
-        namespace gen = optics::generic;
-        const Lanes eta_nominal = select(h.entering, Lanes(nominal), Lanes(1.0 / nominal));
-        const Lanes sin2_n = gen::sin2_transmitted(cos_i, eta_nominal);
-        const Lanes R = select(sin2_n >= Lanes(1.0), Lanes(1.0),
-                               gen::fresnel_terms(cos_i, gen::cos_of_sin2(sin2_n), eta_nominal).R());
-        const Lanes sin2_t = gen::sin2_transmitted(cos_i, eta);
-        const LaneMask tir = sin2_t >= Lanes(1.0);
-        Lanes filter[3];
-        for (int c = 0; c < 3; ++c) filter[c] = (Lanes(1.0) - R) * Lanes(d.filter[c]);
-        const Lanes grey = pov_filter_greyscale(filter, SceneTracer::kPovGreyscale);
-        const Lanes largest = largest_of(abs(filter[0]), abs(filter[1]), abs(filter[2]));
-        const LaneMask spawn = grey > Lanes(tracer_.settings().pruning_threshold());
-        const LaneMask mirror = m && spawn && tir;  // the refracted ray turned into total internal reflection
-        const LaneMask normal = m && !mirror;
-        const LaneVec3 reflected = gen::reflect(p.dir, h.normal).normalized();
-        const Lanes one(1.0);
-        const Lanes mirror_factor[3] = {one, one, one};
-        const Lanes reflect_factor[3] = {R, R, R};
-        Lanes f[3];
-        for (int c = 0; c < 3; ++c) f[c] = select(mirror, mirror_factor[c], reflect_factor[c]);
-        fill_child(child[0], p, h, m, reflected, f, select(mirror, largest, R), false, lost);
-        const LaneMask refracts = normal && spawn;
-        if (refracts.any())
-            fill_child(child[1], p, h, refracts,
-                       gen::refracted_direction(p.dir, h.normal, cos_i, gen::cos_of_sin2(sin2_t), eta).normalized(),
-                       filter, largest, true, lost);
-    }
-
-    // The lanes `m` of a fresh child c (no lane set yet): leaving hit h of packet p along
-    // `dir`, with colour factors f and threshold factor bf (push()'s attenuation), unless
-    // push()'s rules drop them (their light then counted in `lost`). Its other lanes get
-    // values they will not use.
-    void fill_child(LaneEntry& c, const LaneEntry& p, const SceneTracer::LaneHits& h, const LaneMask& m,
-                    const LaneVec3& dir, const Lanes (&f)[3], const Lanes& bf, bool transmitted, LaneLosses& lost) {
+    // The same on the lanes `m` of a fresh packet child c (no lane set yet) of packet p, each
+    // lane as child() above (no tint: node children); its other lanes get values they do
+    // not use.
+    void lanes_child(Packet& c, const Packet& p, const LaneMask& m, const SceneTracer::LaneHits& h, const LaneVec3& dir,
+                     const LaneVec3& f, const Lanes& bf, bool transmitted, LaneLosses& lost) {
         const Lanes bailout = p.bailout * bf;
+        const LaneVec3 weight = cwise(p.weight, f);
         const std::int16_t dr = transmitted ? 0 : 1, dt = transmitted ? 1 : 0;
         for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i) {
             c.reflections[i] = static_cast<std::int16_t>(p.reflections[i] + dr);
             c.transmissions[i] = static_cast<std::int16_t>(p.transmissions[i] + dt);
         }
         LaneMask keep = m;
-        for (int l = 0; l < kLanes; ++l) {
-            if (!m[l]) continue;
+        for_each_lane(m, [&](int l) {
             const size_t i = static_cast<size_t>(l);
             const Cut why = cut(p.depth, c.reflections[i], c.transmissions[i], bailout[l]);
-            if (why == Cut::Kept) continue;
+            if (why == Cut::Kept) return;
             keep[l] = false;
-            const Vec3 w(p.weight[0][l] * f[0][l], p.weight[1][l] * f[1][l], p.weight[2][l] * f[2][l]);
-            as_lane(lost, l, [&] { count(why) += band_weighted_mean(w, p.band[i]); });
-        }
+            const Sink one{&lost.depth[l], &lost.limits[l], &lost.threshold[l]};
+            count(why, one) += band_weighted_mean(weight.lane(l), p.band[i]);
+        });
         if (!keep.any()) return;
-        c.origin = h.point;
-        c.dir = dir;
-        for (int k = 0; k < 3; ++k) c.weight[k] = p.weight[k] * f[k];
+        c.ray.origin = h.point;
+        c.ray.dir = dir;
+        c.weight = weight;
         c.bailout = bailout;
         c.travelled = p.travelled + h.t;
         c.active = keep;
         c.band = p.band;
-        c.facet = h.facet;
+        c.depth = static_cast<std::int16_t>(p.depth + 1);
         const Object* objects = tracer_.scene().objects.data();
         for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i)
-            c.object[i] = keep[static_cast<int>(i)] ? static_cast<std::int32_t>(h.object[i] - objects) : -1;
+            c.from[i] = keep[static_cast<int>(i)] ? RayOrigin{static_cast<std::int32_t>(h.object[i] - objects), h.facet[i]}
+                                                  : RayOrigin{};
     }
 
     // The lanes m of packet p left the scene.
-    template <class LaneEnds>
-    static void background_lanes(const LaneEntry& p, const LaneMask& m, LaneEnds& ends) {
-        if constexpr (BackgroundLanes<LaneEnds>::value) {
+    template <class Ends>
+    static void background_lanes(const Packet& p, const LaneMask& m, Ends& ends) {
+        if constexpr (BackgroundLanes<Ends>::value) {
             ends.background_lanes(p, m);
         } else {
-            for (int l = 0; l < kLanes; ++l)
-                if (m[l]) ends.lane(l).background(p.lane(l));
+            for_each_lane(m, [&](int l) { ends.lane(l).background(p.lane(l)); });
         }
     }
 
@@ -578,27 +703,17 @@ private:
         return w.mean();
     }
 
-    // The light a dropped child would have carried for unpolarised light: its colour
-    // weight's mean, times the Fresnel part its polarisation payload holds.
-    double dropped(const Entry& e, const SurfaceHit& h, const Branch& br, const Vec3& weight, const polar::Mueller& M,
-                   int band) const {
-        const int k = band == -2 ? e.band : band;
-        if (k >= 0 && limits_.band_weights && static_cast<size_t>(k) >= limits_.band_weights->size()) return 0.0;
-        return band_weighted_mean(weight, k) *
-               throughput(descend(e.pol, h.normal, e.ray.dir, M, br.frame_parent, br.frame_child));
-    }
-
     const SceneTracer& tracer_;
     TreeLimits limits_;
     RenderStats& stats_;
-    // Lane walks: the indices of the last packet's bands in the last material met.
+    Sink sink_{&stats_.lost_depth, &stats_.lost_limits, &stats_.lost_threshold};
+    // Where a packet walk sums each lane's losses (walk_bands: the group's).
+    LaneLosses lost_;
+    LaneLosses* packet_lost_ = &lost_;
+    // Packets: the indices of the last packet's bands in the last material met.
     const Material* ior_material_ = nullptr;
     std::array<std::int16_t, kLanes> ior_bands_{};
     Lanes ior_{0.0}, inverse_ior_{0.0};
-    // as_lane: where push() counts dropped light instead of the stats.
-    LaneLosses* lane_lost_ = nullptr;
-    int lane_ = 0;
-    List scratch_;  // a lane's children on their way into packets
 };
 using RayTreeWalker = RayTreeWalkerT<NaturalLight>;
 

@@ -14,93 +14,19 @@
 #include <tbb/task_arena.h>
 
 #include "core/illumination_map.h"
-#include "core/integrators/fresnel_tree.h"
+#include "core/integrators/integrator.h"
 #include "core/integrators/spectral.h"
 #include "core/light_pass.h"
 #include "core/memory.h"
-#include "core/integrators/stochastic.h"
-#include "core/integrators/whitted.h"
-#include "core/random.h"
 #include "core/tracer.h"
 #include "geometry/error.h"
 #include "core/threads.h"
 
 namespace refract {
 
-void RenderStats::merge(const RenderStats& o) {
-    primary_rays += o.primary_rays;
-    segments += o.segments;
-    shadow_rays += o.shadow_rays;
-    tree_nodes += o.tree_nodes;
-    pruned += o.pruned;
-    depth_limited += o.depth_limited;
-    lost_depth += o.lost_depth;
-    lost_limits += o.lost_limits;
-    lost_threshold += o.lost_threshold;
-    peak_list = std::max(peak_list, o.peak_list);
-    spectral_splits += o.spectral_splits;
-    shortcut_tests += o.shortcut_tests;
-    shortcut_taken += o.shortcut_taken;
-    wavelength_segments += o.wavelength_segments;
-    facet_local += o.facet_local;
-    facet_full += o.facet_full;
-    photons += o.photons;
-    photon_segments += o.photon_segments;
-    deposits += o.deposits;
-    light_seconds += o.light_seconds;
-}
-
-std::string RenderStats::summary() const {
-    std::ostringstream s;
-    s << "primary rays      " << primary_rays << "\n"
-      << "ray segments      " << segments << "\n"
-      << "shadow rays       " << shadow_rays << "\n"
-      << "tree nodes        " << tree_nodes << "\n"
-      << "pruned branches   " << pruned << "\n"
-      << "depth-limited     " << depth_limited << "\n"
-      << "lost weight       depth " << lost_depth << ", limits " << lost_limits << ", threshold " << lost_threshold
-      << " (of " << primary_rays << " primary rays)\n"
-      << "peak list / tree  " << peak_list << "\n"
-      << "wall time (s)     " << seconds << "\n";
-    if (spectral_splits > 0 || shortcut_tests > 0)
-        s << "spectral splits   " << spectral_splits << "\n"
-          << "shortcut tests    " << shortcut_tests << "\n"
-          << "shortcut taken    " << shortcut_taken << "\n"
-          << "wavelength segs   " << wavelength_segments << "\n";
-    if (facet_local + facet_full > 0)
-        s << "facet segments    " << facet_local << " local, " << facet_full << " full ("
-          << 100.0 * static_cast<double>(facet_local) / static_cast<double>(facet_local + facet_full) << " % local)\n";
-    if (photons > 0)
-        s << "photons           " << photons << "\n"
-          << "photon segments   " << photon_segments << "\n"
-          << "map deposits      " << deposits << "\n"
-          << "light pass (s)    " << light_seconds << "\n";
-    if (photons > 0 && light_seconds > 0) s << "photons/s         " << static_cast<double>(photons) / light_seconds << "\n";
-    if (seconds > 0) s << "segments/s        " << static_cast<double>(segments) / seconds << "\n";
-    return s.str();
-}
-
-std::string RenderStats::lost_warning(double fraction) const {
-    const double total = lost_depth + lost_limits + lost_threshold;
-    if (primary_rays == 0 || !(total > fraction * static_cast<double>(primary_rays))) return "";
-    const double n = static_cast<double>(primary_rays);
-    auto pct = [&](double v) {
-        std::ostringstream s;
-        s.precision(3);
-        s << 100.0 * v / n << " %";
-        return s.str();
-    };
-    std::string why;
-    if (lost_depth >= lost_limits && lost_depth >= lost_threshold) why = "raise render.max_depth";
-    else if (lost_threshold >= lost_limits) why = "lower render.threshold";
-    else why = "raise render.spectral.max_reflections / max_transmissions";
-    return "warning: " + pct(total) + " of the image's light was dropped (depth limit " + pct(lost_depth) +
-           ", reflection/transmission limits " + pct(lost_limits) + ", threshold " + pct(lost_threshold) + "): " +
-           why;
-}
-
 namespace {
 
+// The scene's settings that cannot be honoured, before any work: one line naming the field.
 void validate(const Scene& scene) {
     const std::string& f = scene.source.empty() ? std::string("scene") : scene.source;
     if (scene.camera.width <= 0 || scene.camera.height <= 0)
@@ -109,75 +35,11 @@ void validate(const Scene& scene) {
         if (scene.objects[k].material < 0 || scene.objects[k].material >= static_cast<int>(scene.materials.size()))
             throw InputError(f + ": /objects/" + std::to_string(k) + "/material: no such material");
     const RenderSettings& s = scene.settings;
-    if (s.polarisation == PolarisationModel::Exact) {
-        const std::string where = f + ": /render/polarisation: ";
-        if (s.compat == Compat::PovRay)
-            throw InputError(where + "\"exact\" has no POV-Ray counterpart (compat \"povray\" is natural light)");
-        if (s.integrator != IntegratorKind::FresnelTree)
-            throw InputError(where + "\"exact\" needs the fresnel-tree integrator (or the spectral eye pass)");
-        for (const Material& m : scene.materials)
-            if (m.dielectric() && m.dielectric()->reflectance != ReflectanceModel::Fresnel)
-                throw InputError(f + ": material '" + m.name +
-                                 "': \"exact\" polarisation needs \"reflectance\": \"fresnel\" (the amplitudes)");
-    }
+    CompatRules(s).validate(scene);
+    validate_integrator(scene);
     for (const Material& m : scene.materials)
-        if (m.is<material::Uniaxial>() && (s.compat == Compat::PovRay || s.integrator != IntegratorKind::FresnelTree))
-            throw InputError(f + ": material '" + m.name +
-                             "': a uniaxial crystal needs the physical mode and the fresnel-tree integrator (or the "
-                             "spectral eye pass): its rays carry their o/e wave along the ray tree");
-    for (const Material& m : scene.materials)
-        if (m.dielectric() && !(m.dielectric()->ior > 0 && std::isfinite(m.dielectric()->ior)))
-            throw InputError(f + ": material '" + m.name + "': ior must be a finite number > 0");
-}
-
-// The primary ray of one sample of pixel (i, j): through its centre, or jittered with
-// the sample's own random stream (which the stochastic integrator then continues).
-Ray sample_ray(const SceneTracer& tracer, int i, int j, Rng& rng) {
-    double x = i + 0.5, y = j + 0.5;
-    if (tracer.settings().jitter) {
-        x = i + rng.uniform();
-        y = j + rng.uniform();
-    }
-    return tracer.camera_ray(x, y);
-}
-
-Vec3 pixel_value(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
-                 std::vector<double>* band_light = nullptr) {
-    const Scene& scene = tracer.scene();
-    const RenderSettings& s = scene.settings;
-    const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
-    Vec3 sum(0, 0, 0);
-    if (!spectral && s.integrator == IntegratorKind::Stochastic && SceneTracer::lanes()) {
-        // The samples' paths kLanes at a time, summed in sample order (the same sum).
-        thread_local std::vector<Vec3> values;
-        stochastic_radiance_samples(
-            tracer, s.samples,
-            [&](int k, Rng& rng) {
-                rng = Rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-                ++stats.primary_rays;
-                return sample_ray(tracer, i, j, rng);
-            },
-            values, stats);
-        for (const Vec3& v : values) sum += v;
-        return Vec3(sum / s.samples);
-    }
-    for (int k = 0; k < s.samples; ++k) {
-        Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-        const Ray ray = sample_ray(tracer, i, j, rng);
-        ++stats.primary_rays;
-        if (spectral) {
-            sum += spectral_radiance(tracer, *spectral, ray, stats, band_light);
-            continue;
-        }
-        switch (s.integrator) {
-            case IntegratorKind::Whitted: sum += whitted_radiance(tracer, ray, stats); break;
-            case IntegratorKind::FresnelTree: sum += fresnel_tree_radiance(tracer, ray, stats); break;
-            case IntegratorKind::Stochastic: sum += stochastic_radiance(tracer, ray, rng, stats); break;
-        }
-    }
-    if (band_light)
-        for (double& b : *band_light) b /= s.samples;
-    return spectral ? spectral->finish(sum / s.samples) : Vec3(sum / s.samples);
+        validate(m, MaterialCheck{f + ": material '" + m.name + "'", s.polarisation == PolarisationModel::Exact,
+                                  s.integrator == IntegratorKind::FresnelTree});
 }
 
 // The extra per-pixel images a render keeps are bounded (2^28 values, 2 GiB), and the
@@ -207,29 +69,6 @@ void check_channels(const Scene& scene, const RenderOptions& opt) {
     }
 }
 
-// Exact polarisation: the Stokes vectors of pixel (i, j), the samples averaged, S0
-// finished as the RGB image is; `lp` from the sum of the channels before that finish (the
-// cie-rgb pipeline clips S0 at 0, not S1–S3).
-StokesRGB pixel_stokes(const SceneTracer& tracer, int i, int j, RenderStats& stats, const SpectralContext* spectral,
-                       LinearPolarisation& lp) {
-    const Scene& scene = tracer.scene();
-    const RenderSettings& s = scene.settings;
-    const std::uint64_t pixel = static_cast<std::uint64_t>(j) * scene.camera.width + i;
-    StokesRGB sum = StokesRGB::Zero();
-    for (int k = 0; k < s.samples; ++k) {
-        Rng rng(s.seed, pixel, static_cast<std::uint64_t>(k));
-        const Ray ray = sample_ray(tracer, i, j, rng);
-        ++stats.primary_rays;
-        const EyeStokes start = camera_stokes(scene, ray);
-        sum += spectral ? spectral_stokes(tracer, *spectral, ray, start, stats)
-                        : fresnel_tree_stokes(tracer, ray, start, stats);
-    }
-    sum /= s.samples;
-    lp = linear_polarisation(sum, scene, tracer.camera_ray(i + 0.5, j + 0.5));
-    if (spectral) sum.row(0) = spectral->finish(sum.row(0).transpose()).transpose();
-    return sum;
-}
-
 }  // namespace
 
 StokesRGB render_pixel_stokes(const Scene& scene, int i, int j, RenderStats* stats) {
@@ -246,12 +85,13 @@ StokesRGB render_pixel_stokes(const Scene& scene, int i, int j, RenderStats* sta
             ctx->maps = maps.get();
         }
     }
+    const std::unique_ptr<Integrator> integrator = make_integrator(tracer, ctx ? &*ctx : nullptr);
     StokesRGB v = StokesRGB::Zero();
     if (scene.settings.polarisation == PolarisationModel::Exact) {
         LinearPolarisation lp{};
-        v = pixel_stokes(tracer, i, j, local, ctx ? &*ctx : nullptr, lp);
+        v = integrator->pixel_stokes(i, j, local, lp);
     } else {
-        v.row(0) = pixel_value(tracer, i, j, local, ctx ? &*ctx : nullptr).transpose();
+        v.row(0) = integrator->pixel(i, j, local, nullptr).transpose();
     }
     if (stats) stats->merge(local);
     return v;
@@ -269,7 +109,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     const int threads = worker_threads(opt.threads);
     check_memory(estimate_render_memory(scene, opt, threads), opt.max_memory,
                  scene.source.empty() ? std::string("scene") : scene.source);
-    SceneTracer tracer(scene);
+    SceneTracer tracer(scene, opt.trace);
     std::optional<SpectralContext> ctx;
     std::shared_ptr<const IlluminationMaps> maps = opt.maps;
     RenderStats light_stats;
@@ -277,7 +117,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
         ctx = SpectralContext::build(scene);
         if (scene.settings.light_pass.enabled) {
             if (!maps) {
-                maps = light_pass(scene, *ctx, threads, opt.cancel);
+                maps = light_pass(scene, *ctx, threads, opt.cancel, opt.trace);
                 if (cancelled()) throw RenderCancelled();
                 light_stats.light_seconds = maps->seconds;
             }
@@ -290,6 +130,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
         }
     }
     const SpectralContext* spectral = ctx ? &*ctx : nullptr;
+    const std::unique_ptr<Integrator> integrator = make_integrator(tracer, spectral);
     const int W = scene.camera.width, H = scene.camera.height;
     RenderResult result{Image(W, H), {}, {}, {}, {}, std::nullopt};
     if (opt.lost_energy) result.lost.assign(3 * static_cast<size_t>(W) * H, 0.0);
@@ -318,7 +159,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                         RenderStats st;  // this pixel's, for its lost weight
                         if (exact) {
                             LinearPolarisation lp{};
-                            const StokesRGB sv = pixel_stokes(tracer, i, j, st, spectral, lp);
+                            const StokesRGB sv = integrator->pixel_stokes(i, j, st, lp);
                             result.image.set(i, j, sv.row(0).transpose());
                             PolarisationImages& p = *result.polarisation;
                             const size_t px = static_cast<size_t>(j) * W + i;
@@ -328,8 +169,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                             p.aolp[px] = lp.aolp;
                         } else {
                             std::vector<double> bands(result.wavelengths.size(), 0.0);
-                            result.image.set(i, j, pixel_value(tracer, i, j, st, spectral,
-                                                               opt.spectral_channels ? &bands : nullptr));
+                            result.image.set(i, j, integrator->pixel(i, j, st, opt.spectral_channels ? &bands : nullptr));
                             std::copy(bands.begin(), bands.end(),
                                       result.spectral.begin() +
                                           static_cast<std::ptrdiff_t>(bands.size() * (static_cast<size_t>(j) * W + i)));

@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "core/environment_map.h"
+#include "core/compat.h"
+#include "core/integrators/integrator.h"
 #include "core/json_reader.h"
 #include "geometry/gem/brilliant.h"
 #include "geometry/error.h"
@@ -114,118 +116,10 @@ Background parse_background(const json& v, const std::string& file) {
     return b;
 }
 
-Pigment parse_pigment(const JsonReader& r) {
-    Pigment p;
-    p.color = r.vec3("color", p.color);
-    for (int k = 0; k < 3; ++k)
-        if (p.color[k] < 0) r.fail_at("color", "components must be >= 0");
-    if (r.has("checker")) {
-        const JsonReader c = r.child("checker");
-        c.only({"color2", "size"});
-        p.checker = Checker{c.vec3("color2", Vec3(0, 0, 0)), c.positive("size", 1.0)};
-    }
-    return p;
-}
-
-material::Dielectric parse_dielectric(const JsonReader& r, const std::string& file) {
-    r.only({"type", "ior", "reflectance", "reflectivity", "filter", "dispersion", "absorption"});
-    material::Dielectric m;
-    m.ior = r.number("ior", 1.5);
-    if (!(m.ior > 0)) r.fail_at("ior", "must be > 0 (got " + std::to_string(m.ior) + ")");
-    const std::string model = r.string("reflectance", "fresnel");
-    static const std::map<std::string, ReflectanceModel> models{
-        {"constant", ReflectanceModel::Constant}, {"fresnel", ReflectanceModel::Fresnel},
-        {"fresnel-s", ReflectanceModel::FresnelS}, {"fresnel-p", ReflectanceModel::FresnelP},
-        {"schlick", ReflectanceModel::Schlick}};
-    const auto it = models.find(model);
-    if (it == models.end())
-        r.fail_at("reflectance", "unknown model '" + model + "' (constant, fresnel, fresnel-s, fresnel-p, schlick)");
-    m.reflectance = it->second;
-    if (m.reflectance == ReflectanceModel::Constant) {
-        m.constant_reflectivity = r.number("reflectivity");
-        if (m.constant_reflectivity < 0 || m.constant_reflectivity > 1) r.fail_at("reflectivity", "must be in [0, 1]");
-    } else if (r.has("reflectivity")) {
-        r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
-    }
-    m.filter = r.vec3("filter", m.filter);
-    if (r.has("dispersion")) {
-        m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
-        // One index: the dispersion model's. A stated `ior` must agree with it: exactly for
-        // POV-Ray's law (whose own ior is the interior's), to 5e-4 otherwise (a rounded n_d).
-        const double nominal = m.dispersion->nominal();
-        const double tolerance = m.dispersion->is_povray() ? 0.0 : 5e-4;
-        if (r.has("ior") && !(std::fabs(m.ior - nominal) <= tolerance))
-            r.fail_at("ior", format_value(m.ior) + " contradicts \"dispersion\", whose nominal index is " +
-                                 format_value(nominal) + (tolerance > 0 ? " (allowed difference 5e-4)" : "") +
-                                 "; give one or make them agree");
-        m.ior = nominal;
-    }
-    if (r.has("absorption"))
-        m.absorption = spectrum::parse_absorption(r.raw("absorption"), file + ": " + r.path_of("absorption"));
-    return m;
-}
-
-// {"type": "uniaxial", "crystal": "calcite" | "ordinary": <dispersion>, "extraordinary":
-//  <dispersion>, "optic_axis": [x, y, z], "filter": [r, g, b]} (docs/birefringence.md).
-material::Uniaxial parse_uniaxial(const JsonReader& r, const std::string& file) {
-    r.only({"type", "crystal", "ordinary", "extraordinary", "optic_axis", "filter"});
-    material::Uniaxial m{spectrum::Dispersion{}, spectrum::Dispersion{}, Vec3(0, 0, 1), Vec3(1, 1, 1), ""};
-    if (r.has("crystal")) {
-        if (r.has("ordinary") || r.has("extraordinary"))
-            r.fail_at("crystal", "give either a catalogue \"crystal\" or \"ordinary\" and \"extraordinary\"");
-        m.crystal = r.string("crystal");
-        const auto c = spectrum::uniaxial_crystal(m.crystal);
-        if (!c) {
-            std::string known;
-            for (const auto& n : spectrum::uniaxial_crystal_names()) known += (known.empty() ? "" : ", ") + n;
-            r.fail_at("crystal", "unknown crystal '" + m.crystal + "' (" + known + ")");
-        }
-        m.ordinary = c->ordinary;
-        m.extraordinary = c->extraordinary;
-    } else {
-        if (!r.has("ordinary") || !r.has("extraordinary"))
-            r.fail_at("type", "a uniaxial material needs \"crystal\", or both \"ordinary\" and \"extraordinary\"");
-        m.ordinary = spectrum::parse_dispersion(r.raw("ordinary"), file + ": " + r.path_of("ordinary"));
-        m.extraordinary = spectrum::parse_dispersion(r.raw("extraordinary"), file + ": " + r.path_of("extraordinary"));
-        if (m.ordinary.is_povray() || m.extraordinary.is_povray())
-            r.fail_at("ordinary", "POV-Ray's dispersion law is not supported for a uniaxial crystal");
-    }
-    const Vec3 axis = r.vec3("optic_axis", m.optic_axis);
-    if (!(axis.norm() > 0) || !axis.allFinite()) r.fail_at("optic_axis", "must be a non-zero vector");
-    m.optic_axis = axis.normalized();
-    m.filter = r.vec3("filter", m.filter);
-    return m;
-}
-
 Material parse_material(const JsonReader& r, const std::string& name, const std::string& file) {
     Material m;
     m.name = name;
-    const std::string type = r.string("type");
-    if (type == "diffuse") {
-        r.only({"type", "color", "checker", "diffuse", "ambient"});
-        m.kind = material::Diffuse{parse_pigment(r), r.number("diffuse", 1.0), r.number("ambient", 0.0)};
-    } else if (type == "lambertian") {
-        r.only({"type", "color", "checker"});
-        m.kind = material::Lambertian{parse_pigment(r)};
-    } else if (type == "mirror") {
-        r.only({"type", "color"});
-        m.kind = material::Mirror{parse_pigment(r).color};
-    } else if (type == "metal") {
-        r.only({"type", "color", "fuzz"});
-        const double fuzz = r.number("fuzz", 0.0);
-        if (fuzz < 0 || fuzz > 1) r.fail_at("fuzz", "must be in [0, 1]");
-        m.kind = material::Metal{parse_pigment(r).color, fuzz};
-    } else if (type == "emissive") {
-        r.only({"type", "color"});
-        m.kind = material::Emissive{parse_pigment(r).color};
-    } else if (type == "dielectric") {
-        m.kind = parse_dielectric(r, file);
-    } else if (type == "uniaxial") {
-        m.kind = parse_uniaxial(r, file);
-    } else {
-        r.fail_at("type", "unknown material type '" + type +
-                              "' (diffuse, lambertian, mirror, metal, emissive, dielectric, uniaxial)");
-    }
+    m.kind = read_material_kind(r, r.string("type"), file);
     return m;
 }
 
@@ -460,10 +354,13 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
             "polarisation"});
     RenderSettings s;
     const std::string integ = r.string("integrator", "fresnel-tree");
-    if (integ == "whitted") s.integrator = IntegratorKind::Whitted;
-    else if (integ == "fresnel-tree") s.integrator = IntegratorKind::FresnelTree;
-    else if (integ == "stochastic") s.integrator = IntegratorKind::Stochastic;
-    else r.fail_at("integrator", "unknown integrator '" + integ + "' (whitted, fresnel-tree, stochastic)");
+    if (const auto k = integrator_of(integ)) {
+        s.integrator = *k;
+    } else {
+        std::string names;
+        for (const std::string& n : integrator_names()) names += (names.empty() ? "" : ", ") + n;
+        r.fail_at("integrator", "unknown integrator '" + integ + "' (" + names + ")");
+    }
     s.max_depth = r.integer("max_depth", s.max_depth, 0, 10000);
     s.threshold = r.number("threshold", s.threshold);
     if (s.threshold < 0 || s.threshold >= 1) r.fail_at("threshold", "must be in [0, 1)");
@@ -474,10 +371,13 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
         if (!v.is_number_unsigned()) r.fail_at("seed", "must be a non-negative integer");
         s.seed = v.get<std::uint64_t>();
     }
-    const std::string compat = r.string("compat", "physical");
-    if (compat == "physical") s.compat = Compat::Physical;
-    else if (compat == "povray") s.compat = Compat::PovRay;
-    else r.fail_at("compat", "unknown mode '" + compat + "' (physical, povray)");
+    const std::string compat = r.string("compat", CompatRules::name(Compat::Physical));
+    if (const auto c = CompatRules::from_name(compat)) {
+        s.compat = *c;
+    } else {
+        r.fail_at("compat", "unknown mode '" + compat + "' (" + CompatRules::name(Compat::Physical) + ", " +
+                                CompatRules::name(Compat::PovRay) + ")");
+    }
     // `"spectral": false`: RGB rays only, even with dispersive or uniaxial materials (their
     // index at the sodium D line).
     if (r.has("spectral") && !(r.raw("spectral").is_boolean() && !r.raw("spectral").get<bool>()))

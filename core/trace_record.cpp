@@ -35,9 +35,9 @@ public:
         rec_.radiance += s.light;
     }
 
-    void leaf(const Entry&, const SurfaceHit& h) {
+    void leaf(const Entry& e, const SurfaceHit& h) {
         TraceSegment& s = rec_.segments[static_cast<size_t>(current_)];
-        s.event = h.material->is<material::Emissive>() ? "emissive" : "diffuse";
+        s.event = describe(*h.material, Interaction{}, h, e.ray, 0.0).event;
         s.light = s.weight.cwiseProduct(tracer_.local_light(h, stats_));
         rec_.radiance += s.light;
     }
@@ -59,37 +59,22 @@ public:
         const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h), false, e.wave, wavelength(e),
                                                 std::is_same_v<P, EyeStokes>);
         if (in.leaf) return false;  // leaf() names the event
-        if (const auto* d = h.material->dielectric()) {
-            const double ior = band_ior(e, h) > 0 ? band_ior(e, h) : d->ior;
-            s.eta = h.entering ? ior : 1.0 / ior;
-            s.cos_i = std::fmin(-e.ray.dir.dot(h.normal), 1.0);
-            s.R = in.reflectance;
-            if (const auto f = optics::fresnel(s.cos_i, s.eta)) {
-                s.Rs = f->Rs;
-                s.Rp = f->Rp;
-                s.cos_t = f->cos_t;
-                s.event = in.branches == 2 ? "reflection and refraction" : "reflection only";
-            } else {
-                s.Rs = s.Rp = 1.0;
-                s.event = "total internal reflection";
-            }
-        } else if (h.material->is<material::Uniaxial>()) {
-            // The branches: reflected beam(s), and o and e rays (entering) or the transmitted beam.
-            int transmitted = 0;
-            for (int b = 0; b < in.branches; ++b) transmitted += in.transmitted[static_cast<size_t>(b)] ? 1 : 0;
-            s.event = transmitted == 0 ? "total internal reflection" : "double refraction";
-            s.R = in.reflectance;
-        } else {
-            s.event = "mirror";
-            s.R = in.reflectance;
+        const NodeRecord r = describe(*h.material, in, h, e.ray, band_ior(e, h));
+        s.event = r.event;
+        s.R = r.R;
+        if (r.dielectric) {
+            s.eta = r.eta;
+            s.cos_i = r.cos_i;
+            s.cos_t = r.cos_t;
+            s.Rs = r.Rs;
+            s.Rp = r.Rp;
         }
         return false;  // the walker expands the node as it always does
     }
 
     double band_ior(const Entry&, const SurfaceHit& h) const {
-        const auto* d = h.material->dielectric();
-        if (nm_ <= 0 || !d || !d->dispersion) return 0.0;
-        return d->dispersion->n(nm_);
+        if (nm_ <= 0 || !dispersive(*h.material)) return 0.0;
+        return band_index(*h.material, nm_, tracer_.rules());
     }
     double wavelength(const Entry&) const { return nm_; }
 

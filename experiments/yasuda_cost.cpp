@@ -92,7 +92,7 @@ S refract_node(const NodeInput<S>& in, Model m) {
     const V3<S> weight(in.w, in.w, in.w);
     const auto r = attenuate(weight, in.w, V3<S>(node.R, node.R, node.R), node.R);
     const auto t = attenuate(weight, in.w, node.transmit_factor, node.transmit_bailout);
-    return r.bailout + t.bailout + r.weight.x + t.weight.x + node.reflected.x + node.refracted->x;
+    return r.bailout + t.bailout + r.weight.x + t.weight.x + node.reflected.x + node.refracted.x;
 }
 
 template <class F>

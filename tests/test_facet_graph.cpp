@@ -215,9 +215,9 @@ TEST_CASE("Ohtsuka & Kawai 1998 diamond: the same image with facet-local interse
     s.settings.light_pass.photons = 3000;
     RenderOptions o;
     o.threads = 2;
-    SceneTracer::set_facet_local(false);
+    o.trace.facet_local = false;
     const RenderResult full = render(s, o);
-    SceneTracer::set_facet_local(true);
+    o.trace.facet_local = true;
     const RenderResult local = render(s, o);
     CHECK(full.stats.facet_local == 0);
     CHECK(local.stats.facet_local > local.stats.facet_full);

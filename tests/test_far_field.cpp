@@ -292,9 +292,9 @@ struct LanePair {
 };
 LanePair lanes_and_alone(const json& scene, FarFieldSettings s) {
     const Scene sc = parse_scene(scene, "lanes.json");
-    s.wavelength_lanes = true;
+    s.trace.packets = true;
     LanePair p{far_field(sc, s, 2), {}};
-    s.wavelength_lanes = false;
+    s.trace.packets = false;
     p.alone = far_field(sc, s, 2);
     return p;
 }

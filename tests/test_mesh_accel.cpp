@@ -158,7 +158,7 @@ TEST_CASE("Sphere set: the in-order nearest-hit search's object, t, point and no
     }
     for (int k = 0; k < 40; k += 9) s.objects.push_back({"copy", s.objects[static_cast<size_t>(k)].shape, 0});
     s.objects.push_back({"mirror", Plane{Vec3(0, 0, 1), 3.5}, 0});
-    REQUIRE(s.objects.size() < SceneTracer::kBvhMinObjects);
+    REQUIRE(s.objects.size() < HitSearch::kBvhMinObjects);
     const SceneTracer tracer(s);
     RenderStats st;
     long hits = 0, ties = 0, leaving = 0, mismatches = 0;

@@ -34,9 +34,9 @@ Pair render_both(const Scene& s) {
     o.threads = 2;
     o.lost_energy = true;
     Pair p;
-    SceneTracer::set_lanes(false);
+    o.trace.packets = false;
     p.one_by_one = render(s, o);
-    SceneTracer::set_lanes(true);
+    o.trace.packets = true;
     p.lanes = render(s, o);
     for (int j = 0; j < s.camera.height; ++j)
         for (int i = 0; i < s.camera.width; ++i)
@@ -66,10 +66,10 @@ TEST_CASE("Ohtsuka & Kawai 1998 diamond: light pass and eye pass with the wavele
 
     // The illumination maps themselves.
     const SpectralContext ctx = SpectralContext::build(s);
-    SceneTracer::set_lanes(false);
-    const auto one = light_pass(s, ctx, 2);
-    SceneTracer::set_lanes(true);
-    const auto lanes = light_pass(s, ctx, 2);
+    TraceOptions alone;
+    alone.packets = false;
+    const auto one = light_pass(s, ctx, 2, nullptr, alone);
+    const auto lanes = light_pass(s, ctx, 2, nullptr, TraceOptions{});
     long elements = 0, differing = 0;
     for (size_t k = 0; k < one->by_object.size(); ++k) {
         if (!one->by_object[k]) continue;

@@ -1,5 +1,7 @@
 #include "core/integrators/fresnel_tree.h"
 
+#include "core/integrators/integrator.h"
+#include "core/integrators/spectral.h"
 #include "core/ray_tree.h"
 
 namespace refract {
@@ -45,6 +47,45 @@ Vec3 fresnel_tree_radiance(const SceneTracer& tracer, const Ray& primary, Render
 StokesRGB fresnel_tree_stokes(const SceneTracer& tracer, const Ray& primary, const EyeStokes& start,
                               RenderStats& stats) {
     return walk_pixel(tracer, primary, start, stats);
+}
+
+namespace {
+
+// Yasuda's tree per sample, the samples averaged; exact polarisation: Stokes vectors.
+class FresnelTree : public Integrator {
+public:
+    using Integrator::Integrator;
+    Vec3 pixel(int i, int j, RenderStats& stats, std::vector<double>*) const override {
+        const int n = tracer_.settings().samples;
+        Vec3 sum(0, 0, 0);
+        for (int k = 0; k < n; ++k) {
+            Rng rng;
+            const Ray ray = sample_ray(i, j, k, rng);
+            ++stats.primary_rays;
+            sum += fresnel_tree_radiance(tracer_, ray, stats);
+        }
+        return Vec3(sum / n);
+    }
+    StokesRGB pixel_stokes(int i, int j, RenderStats& stats, LinearPolarisation& lp) const override {
+        const int n = tracer_.settings().samples;
+        StokesRGB sum = StokesRGB::Zero();
+        for (int k = 0; k < n; ++k) {
+            Rng rng;
+            const Ray ray = sample_ray(i, j, k, rng);
+            ++stats.primary_rays;
+            sum += fresnel_tree_stokes(tracer_, ray, camera_stokes(tracer_.scene(), ray), stats);
+        }
+        sum /= n;
+        lp = linear_polarisation(sum, tracer_.scene(), tracer_.camera_ray(i + 0.5, j + 0.5));
+        return sum;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> fresnel_tree_integrator(const SceneTracer& tracer, const SpectralContext* spectral) {
+    if (spectral) return spectral_integrator(tracer, *spectral);
+    return std::make_unique<FresnelTree>(tracer);
 }
 
 }  // namespace refract

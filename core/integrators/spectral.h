@@ -12,13 +12,10 @@
 // contributions lie within `shortcut_threshold` of each other in RGB, their mean stands
 // for the split and the full split is skipped.
 //
-// POV-Ray compat mode (trace.cpp, Trace::ComputeRefraction, POV-Ray 3.7): the split
-// happens at the first refraction only (the reflected ray stays RGB, Fresnel with the
-// nominal index). Only a "povray" model whose dispersion D, in single precision as POV-Ray
-// stores it, differs from 1 (|D − 1| >= 1e-10) splits; each such material splits into its
-// own `samples` bands (POV-Ray's dispersion_samples, wavelengths and hue colours). A band
-// ray keeps its wavelength: at another dispersive material it refracts with that
-// material's index at the band's wavelength (GetDispersionIOR), without splitting again.
+// POV-Ray compat mode (the policy's rules, core/compat/):
+// the split happens at the first refraction only, into POV-Ray's own bands per material. A
+// band ray keeps its wavelength: at another dispersive material it refracts with that
+// material's index at the band's wavelength, without splitting again.
 #include <memory>
 #include <vector>
 
@@ -43,7 +40,11 @@ struct SpectralContext {
     // for every material; POV-Ray mode: the material's own band set (empty when it does
     // not split).
     std::vector<std::vector<int>> split_bands;
-    bool pov = false;                       // POV-Ray compat semantics
+    // Where an RGB ray splits (the policy's, CompatRules::spectral_bands): its whole subtree
+    // below the first dispersive hit, every branch walked per band (physical); or only its
+    // refracted ray, the reflection staying RGB (POV-Ray, core/compat/refraction_split.h).
+    enum class Split { Subtree, Refraction };
+    Split split = Split::Subtree;
     bool clip = true;                       // cie-rgb: clip negatives at the end
     bool shortcut = false;
     double shortcut_threshold = 0.01;

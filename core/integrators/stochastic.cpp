@@ -1,5 +1,7 @@
 #include "core/integrators/stochastic.h"
 
+#include "core/integrators/integrator.h"
+
 #include "geometry/lanes_wide.h"
 
 #include <algorithm>
@@ -14,39 +16,34 @@ struct Path {
     Vec3 radiance{0, 0, 0};
 };
 
-// One bounce of a path whose ray `ray` met `hit` after `depth` bounces: the hit's own light,
-// then the scattered ray's direction, to be normalised (none: the path ends); the ray leaves
-// the hit point.
+// One bounce of a path whose ray `ray` met `hit` after `depth` bounces, by the material's
+// rules (core/material_rules.h): Beer–Lambert over the segment, the hit's own light where it
+// is a leaf, then the sampled continuation's direction, to be normalised (none: the path
+// ends); the ray leaves the hit point.
 std::optional<Vec3> bounce(const SceneTracer& tracer, const SurfaceHit& hit, const Ray& ray, int depth, Path& p,
-                          Rng& rng, RenderStats& stats) {
+                           Rng& rng, RenderStats& stats) {
     const RenderSettings& s = tracer.settings();
     if (const auto a = tracer.absorption(hit, 0.0)) p.throughput = p.throughput.cwiseProduct(*a);  // Beer–Lambert
     const Material& m = *hit.material;
-    const bool random_scatter = m.is<material::Lambertian>() || m.is<material::Metal>();
+    const StochasticRole role = stochastic_role(m);
     if (depth + 1 > s.max_depth) {
-        // The ray after the last bounce: its hit's own light counts (emissive, direct
-        // light on a diffuse surface), as in the tree integrators; nothing scatters on.
+        // The ray after the last bounce: a leaf's own light counts (emissive, direct light
+        // on a diffuse surface), as in the tree integrators; nothing scatters on, and the
+        // light the path would have gathered from anything but a leaf is lost.
         ++stats.depth_limited;
-        if (!random_scatter) p.radiance += p.throughput.cwiseProduct(tracer.local_light(hit, stats));
-        // The path would have gone on from anything but a leaf (diffuse, emissive).
-        if (random_scatter || !(m.diffuse_surface() || m.is<material::Emissive>())) stats.lost_depth += p.throughput.mean();
+        if (role == StochasticRole::Leaf) {
+            p.radiance += p.throughput.cwiseProduct(tracer.local_light(hit, stats));
+        } else {
+            stats.lost_depth += p.throughput.mean();
+        }
         return std::nullopt;
     }
-    std::optional<Scatter> next;
-    if (const auto* l = m.as<material::Lambertian>()) {
-        next = scatter(*l, tracer.pigment(l->pigment, hit.hit.point), hit, rng);
-    } else if (const auto* metal = m.as<material::Metal>()) {
-        next = scatter(*metal, hit, ray, rng);
-    } else if (const auto* d = m.as<material::Dielectric>(); d && s.compat != Compat::PovRay) {
-        ++stats.tree_nodes;  // as SceneTracer::interact counts a transparent node
-        next = scatter(*d, hit, ray, rng);
-    } else {
-        // Every other material: sample one branch of its interaction (RTIOW), keeping
-        // a leaf's light.
-        const Interaction in = tracer.interact(hit, ray, stats);
-        if (in.leaf) p.radiance += p.throughput.cwiseProduct(tracer.local_light(hit, stats));
-        next = sample_branch(m, in, rng);
+    if (role == StochasticRole::Leaf) {
+        p.radiance += p.throughput.cwiseProduct(tracer.local_light(hit, stats));
+        return std::nullopt;
     }
+    if (transparent(m)) ++stats.tree_nodes;  // a branching node, as SceneTracer::interact counts it
+    const std::optional<Scatter> next = sample(m, hit, ray, tracer.context(), rng);
     if (!next) return std::nullopt;
     p.throughput = p.throughput.cwiseProduct(next->factor);
     return next->dir;
@@ -88,10 +85,9 @@ void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::fu
         dir.set(l, r.dir);
     };
     for (int l = 0; l < kLanes; ++l) fill(l);
-    SceneTracer::LaneIds none;
-    none.fill(-1);
+    const SceneTracer::LaneOrigins none{};
     while (on.any()) {
-        const SceneTracer::LaneHits h = tracer.intersect_lanes(origin, dir, on, none, none, stats);
+        const SceneTracer::LaneHits h = tracer.intersect_lanes(origin, dir, on, none, stats);
         LaneMask bounced;  // the lanes whose new direction is to be normalised
         for (int l = 0; l < kLanes; ++l) {
             if (!on[l]) continue;
@@ -116,6 +112,44 @@ void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::fu
         // Eigen's normalized() on every lane at once (a zero vector stays as it is).
         if (bounced.any()) normalize_lanes(dir, bounced);
     }
+}
+
+namespace {
+
+// RTIOW's paths: each sample's path walked alone, or the samples of a pixel kLanes paths at
+// a time (the tracer's packets), summed in sample order (the same sum).
+class Stochastic : public Integrator {
+public:
+    using Integrator::Integrator;
+    Vec3 pixel(int i, int j, RenderStats& stats, std::vector<double>*) const override {
+        const int n = tracer_.settings().samples;
+        Vec3 sum(0, 0, 0);
+        if (tracer_.packets()) {
+            thread_local std::vector<Vec3> values;
+            stochastic_radiance_samples(
+                tracer_, n,
+                [&](int k, Rng& rng) {
+                    ++stats.primary_rays;
+                    return sample_ray(i, j, k, rng);
+                },
+                values, stats);
+            for (const Vec3& v : values) sum += v;
+            return Vec3(sum / n);
+        }
+        for (int k = 0; k < n; ++k) {
+            Rng rng;
+            const Ray ray = sample_ray(i, j, k, rng);
+            ++stats.primary_rays;
+            sum += stochastic_radiance(tracer_, ray, rng, stats);
+        }
+        return Vec3(sum / n);
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> stochastic_integrator(const SceneTracer& tracer, const SpectralContext*) {
+    return std::make_unique<Stochastic>(tracer);
 }
 
 }  // namespace refract

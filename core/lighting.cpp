@@ -1,0 +1,29 @@
+#include "core/lighting.h"
+
+namespace refract {
+
+Vec3 Lighting::shade(const SurfaceHit& h, const Pigment& pigment, double diffuse, double ambient,
+                     RenderStats& stats) const {
+    const Vec3 pig = rules_.pigment(pigment, h.hit.point);
+    Vec3 c = ambient * pig;
+    for (const Light& l : scene_.lights) {
+        const auto to = l.toward(h.hit.point);
+        if (!to) continue;
+        const double cos_l = h.normal.dot(to->dir);
+        if (cos_l <= 0) continue;
+        const Vec3 tr = rules_.light_transmittance(search_, h.hit.point, to->end, stats);
+        c += diffuse * cos_l * pig.cwiseProduct(l.color).cwiseProduct(tr);
+    }
+    return c;
+}
+
+Vec3 Lighting::leaf(const SurfaceHit& h, const LeafLight& l, RenderStats& stats) const {
+    switch (l.kind) {
+        case LeafLight::Kind::Lit: return shade(h, *l.pigment, l.diffuse, l.ambient, stats);
+        case LeafLight::Kind::Emits: return l.emission;
+        case LeafLight::Kind::None: break;
+    }
+    return Vec3(0, 0, 0);
+}
+
+}  // namespace refract
