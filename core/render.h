@@ -10,47 +10,10 @@
 
 #include "core/image.h"
 #include "core/polarisation_state.h"
+#include "core/render_stats.h"
 #include "core/scene.h"
 
 namespace refract {
-
-// Counters of one render; sums over pixels, so identical for any thread count.
-struct RenderStats {
-    std::uint64_t primary_rays = 0;
-    std::uint64_t segments = 0;        // ray segments traced (intersection searches)
-    std::uint64_t shadow_rays = 0;
-    std::uint64_t tree_nodes = 0;      // branching nodes (surface interactions that split)
-    std::uint64_t pruned = 0;          // branches dropped under the threshold
-    std::uint64_t depth_limited = 0;   // branches dropped at the depth limit
-    // The light the dropped branches would have carried: their weights (cumulative
-    // attenuation, mean of the channels; a primary ray has weight 1), summed, by what
-    // dropped them. Eye passes only (the Fresnel tree, the spectral pass, the stochastic
-    // integrator's last bounce); Whitted's stored tree has no weights while it grows.
-    double lost_depth = 0;       // max_depth
-    double lost_limits = 0;      // the spectral pass's max_reflections / max_transmissions
-    double lost_threshold = 0;   // the pruning threshold
-    std::uint64_t peak_list = 0;       // fresnel-tree: longest FIFO list; whitted: largest stored tree
-    // Spectral eye pass (core/integrators/spectral.h).
-    std::uint64_t spectral_splits = 0;      // rays split per wavelength (first transparent hit)
-    std::uint64_t shortcut_tests = 0;       // three-wavelength tests made
-    std::uint64_t shortcut_taken = 0;       // ... that skipped the full split
-    std::uint64_t wavelength_segments = 0;  // segments traced by single-wavelength rays
-    // Segments leaving a facet of a convex plane set (core/tracer.h): decided from the planes
-    // around the facet and a guessed leaving facet, or by the full plane loop.
-    std::uint64_t facet_local = 0, facet_full = 0;
-    // Light pass (core/light_pass.h).
-    std::uint64_t photons = 0;              // photons shot
-    std::uint64_t photon_segments = 0;      // their ray segments
-    std::uint64_t deposits = 0;             // hits stored in an illumination map
-    double light_seconds = 0;               // wall time of the light pass
-    double seconds = 0;                     // wall time of the render (light + eye pass)
-
-    void merge(const RenderStats& o);
-    std::string summary() const;       // multi-line text for --stats
-    // One line when the dropped weight exceeds `fraction` of the primary rays' (naming the
-    // setting that dropped most), else empty.
-    std::string lost_warning(double fraction = 0.01) const;
-};
 
 struct IlluminationMaps;
 
