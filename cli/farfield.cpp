@@ -72,7 +72,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
         const FarFieldResult r = far_field(scene, s, a->threads);
         experiments::FarFieldFiles files;
         files.plot = !a->no_plot;
-        const auto written = experiments::write_far_field(a->output, r, "far field of " + a->scene, files);
+        const auto written = experiments::write_far_field(a->output, experiments::far_field_tables(r), "far field of " + a->scene, files);
         std::cout << "far field: " << r.photons << " photons, " << r.segments << " segments, " << r.wavelengths.size()
                   << " wavelength(s), " << experiments::fmt(r.seconds, 3) << " s\n";
         for (size_t w = 0; w < r.wavelengths.size(); ++w) {

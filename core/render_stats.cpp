@@ -5,54 +5,18 @@
 
 namespace refract {
 
-void RenderStats::merge(const RenderStats& o) {
-    primary_rays += o.primary_rays;
-    segments += o.segments;
-    shadow_rays += o.shadow_rays;
-    tree_nodes += o.tree_nodes;
-    pruned += o.pruned;
-    depth_limited += o.depth_limited;
-    lost_depth += o.lost_depth;
-    lost_limits += o.lost_limits;
-    lost_threshold += o.lost_threshold;
-    peak_list = std::max(peak_list, o.peak_list);
-    spectral_splits += o.spectral_splits;
-    shortcut_tests += o.shortcut_tests;
-    shortcut_taken += o.shortcut_taken;
-    wavelength_segments += o.wavelength_segments;
-    facet_local += o.facet_local;
-    facet_full += o.facet_full;
-    photons += o.photons;
-    photon_segments += o.photon_segments;
-    deposits += o.deposits;
-    light_seconds += o.light_seconds;
-}
+void RenderStats::merge(const RenderStats& o) { merge_fields(*this, o); }
 
 std::string RenderStats::summary() const {
     std::ostringstream s;
-    s << "primary rays      " << primary_rays << "\n"
-      << "ray segments      " << segments << "\n"
-      << "shadow rays       " << shadow_rays << "\n"
-      << "tree nodes        " << tree_nodes << "\n"
-      << "pruned branches   " << pruned << "\n"
-      << "depth-limited     " << depth_limited << "\n"
-      << "lost weight       depth " << lost_depth << ", limits " << lost_limits << ", threshold " << lost_threshold
-      << " (of " << primary_rays << " primary rays)\n"
-      << "peak list / tree  " << peak_list << "\n"
-      << "wall time (s)     " << seconds << "\n";
-    if (spectral_splits > 0 || shortcut_tests > 0)
-        s << "spectral splits   " << spectral_splits << "\n"
-          << "shortcut tests    " << shortcut_tests << "\n"
-          << "shortcut taken    " << shortcut_taken << "\n"
-          << "wavelength segs   " << wavelength_segments << "\n";
+    for_each_field(*this, [&](const auto& f, const auto& v) {
+        if (!f.label || (f.when_nonzero && v == 0)) return;
+        const std::string label = f.label;
+        s << label << std::string(label.size() < 18 ? 18 - label.size() : 1, ' ') << v << "\n";
+    });
     if (facet_local + facet_full > 0)
-        s << "facet segments    " << facet_local << " local, " << facet_full << " full ("
-          << 100.0 * static_cast<double>(facet_local) / static_cast<double>(facet_local + facet_full) << " % local)\n";
-    if (photons > 0)
-        s << "photons           " << photons << "\n"
-          << "photon segments   " << photon_segments << "\n"
-          << "map deposits      " << deposits << "\n"
-          << "light pass (s)    " << light_seconds << "\n";
+        s << "facet local (%)   " << 100.0 * static_cast<double>(facet_local) / static_cast<double>(facet_local + facet_full)
+          << "\n";
     if (photons > 0 && light_seconds > 0) s << "photons/s         " << static_cast<double>(photons) / light_seconds << "\n";
     if (seconds > 0) s << "segments/s        " << static_cast<double>(segments) / seconds << "\n";
     return s.str();

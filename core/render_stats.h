@@ -1,7 +1,11 @@
 #pragma once
-// The counters of a render (RenderStats): sums over pixels, identical for any thread count.
+// The counters of one render (RenderStats): what core/render.h's render() returns beside
+// the image, summed over pixels.
 #include <cstdint>
 #include <string>
+#include <tuple>
+
+#include "core/fields.h"
 
 namespace refract {
 
@@ -36,11 +40,43 @@ struct RenderStats {
     double light_seconds = 0;               // wall time of the light pass
     double seconds = 0;                     // wall time of the render (light + eye pass)
 
-    void merge(const RenderStats& o);
-    std::string summary() const;       // multi-line text for --stats
+    void merge(const RenderStats& o);  // by the field list's rules below
+    std::string summary() const;       // multi-line text for --stats, from the field list's labels
     // One line when the dropped weight exceeds `fraction` of the primary rays' (naming the
     // setting that dropped most), else empty.
     std::string lost_warning(double fraction = 0.01) const;
+};
+
+// The counters, once: the Python module's `stats` dict (python/src/module.cpp), `merge`
+// (sums, except the longest list, which is a maximum, and the wall time, which the caller
+// measures) and the lines of `summary` (a label; some only when not 0).
+template <>
+struct Fields<RenderStats> {
+    static auto list() {
+        using S = RenderStats;
+        return std::make_tuple(
+            field("primary_rays", &S::primary_rays).text("primary rays"),
+            field("segments", &S::segments).text("ray segments"),
+            field("shadow_rays", &S::shadow_rays).text("shadow rays"),
+            field("tree_nodes", &S::tree_nodes).text("tree nodes"),
+            field("pruned", &S::pruned).text("pruned branches"),
+            field("depth_limited", &S::depth_limited).text("depth-limited"),
+            field("lost_depth", &S::lost_depth).text("lost, depth"),
+            field("lost_limits", &S::lost_limits).text("lost, limits"),
+            field("lost_threshold", &S::lost_threshold).text("lost, threshold"),
+            field("peak_list", &S::peak_list).merge(MergeRule::Max).text("peak list / tree"),
+            field("spectral_splits", &S::spectral_splits).text("spectral splits", true),
+            field("shortcut_tests", &S::shortcut_tests).text("shortcut tests", true),
+            field("shortcut_taken", &S::shortcut_taken).text("shortcut taken", true),
+            field("wavelength_segments", &S::wavelength_segments).text("wavelength segs", true),
+            field("facet_local", &S::facet_local).text("facet segs, local", true),
+            field("facet_full", &S::facet_full).text("facet segs, full", true),
+            field("photons", &S::photons).text("photons", true),
+            field("photon_segments", &S::photon_segments).text("photon segments", true),
+            field("deposits", &S::deposits).text("map deposits", true),
+            field("light_seconds", &S::light_seconds).text("light pass (s)", true),
+            field("seconds", &S::seconds).merge(MergeRule::None).text("wall time (s)"));
+    }
 };
 
 }  // namespace refract

@@ -12,6 +12,7 @@
 #include "core/spectrum/dispersion.h"
 #include "core/tracer.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/plot.h"
 
 namespace refract::experiments::birefringence {
@@ -217,6 +218,8 @@ Result compute(const ExperimentOptions& opt) {
     }
     // The o image lies over the line (the image centre), the e image walked off.
     const auto pk = peaks(p.profile[0], x0, dx);
+    p.bright_runs = static_cast<int>(pk.size());
+    p.pixel = kPlateView / W;
     if (pk.size() >= 2) p.separation_measured = std::abs(pk[0].x - pk[1].x);
     const auto intensity_near = [&](const std::vector<double>& prof, double x) {
         const int i = static_cast<int>(std::lround((x - x0) / dx));
@@ -269,20 +272,42 @@ Result compute(const ExperimentOptions& opt) {
     }
     // ---- 3. Fire ----
     r.fire = fire_spread({5, 10, 15, 20});
+    r.findings = judge(r);
     return r;
+}
+
+Findings judge(const Result& r) {
+    Findings f;
+    const Plate& p = r.plate;
+    f.line_doubled = p.bright_runs >= 2;
+    const auto& o = p.o_intensity;
+    const auto& e = p.e_intensity;
+    f.crossed_images = f.line_doubled && o[1] < 0.1 * o[0] && e[1] > 0.5 * e[0] && e[2] < 0.1 * e[0] && o[2] > 0.5 * o[0];
+    return f;
+}
+
+std::string doubling_text(const Result& r) {
+    return r.findings.line_doubled ? "the line appears twice."
+                                   : "the render shows " + std::to_string(r.plate.bright_runs) +
+                                         " bright run(s) across the middle row, not the line twice.";
+}
+
+std::string analyser_text(const Result& r) {
+    const Plate& p = r.plate;
+    if (r.findings.crossed_images)
+        return "Through a linear analyser (exact polarisation) at 0° the ordinary image (field along the line) vanishes "
+               "and at 90° the extraordinary one: the two images are polarised at right angles.";
+    return "Through a linear analyser (exact polarisation) at 0° the ordinary image keeps " +
+           fmt(p.o_intensity[1] / p.o_intensity[0], 3) + " of its brightness and the extraordinary one " +
+           fmt(p.e_intensity[1] / p.e_intensity[0], 3) + ", at 90° " + fmt(p.o_intensity[2] / p.o_intensity[0], 3) +
+           " and " + fmt(p.e_intensity[2] / p.e_intensity[0], 3) +
+           ": the render does not show two images polarised at right angles.";
 }
 
 void write(const Result& r, const std::string& dir) {
     ensure_dir(dir);
     const Plate& p = r.plate;
-    Csv plate{{"thickness", "axis_deg", "n_o", "n_e", "walk_off_deg", "separation_theory", "separation_measured",
-               "relative_error", "o_natural", "e_natural", "o_analyser_0", "e_analyser_0", "o_analyser_90",
-               "e_analyser_90"},
-              {}};
-    plate.add({fmt(p.thickness), fmt(p.axis_deg), fmt(p.n_o), fmt(p.n_e), fmt(p.rho_deg), fmt(p.separation_theory),
-               fmt(p.separation_measured), fmt(p.separation_measured / p.separation_theory - 1), fmt(p.o_intensity[0]),
-               fmt(p.e_intensity[0]), fmt(p.o_intensity[1]), fmt(p.e_intensity[1]), fmt(p.o_intensity[2]),
-               fmt(p.e_intensity[2])});
+    const Csv plate = csv_table(std::vector<Plate>{p});
     write_csv(dir + "/plate.csv", plate);
     Csv prof{{"x", "natural", "analyser_0", "analyser_90"}, {}};
     for (size_t i = 0; i < p.x.size(); ++i)
@@ -291,20 +316,13 @@ void write(const Result& r, const std::string& dir) {
     write_image(dir + "/plate.png", p.image);
     save_json(dir, "plate.json", p.scene);
 
-    Csv gems{{"id", "gem", "optic_axis", "changed_fraction", "walk_off_theory_deg", "walk_off_traced_deg",
-              "offset_theory", "offset_traced", "seconds"},
-             {}};
+    const Csv gems = csv_table(r.gems);
     for (const GemRow& g : r.gems) {
-        gems.add({g.id, g.gem, g.axis, fmt(g.changed_fraction), fmt(g.rho_theory_deg), fmt(g.rho_traced_deg),
-                  fmt(g.offset_theory), fmt(g.offset_traced), fmt(g.seconds, 3)});
         write_image(dir + "/gem_" + g.id + ".png", g.image);
         save_json(dir, "gem_" + g.id + ".json", g.scene);
     }
     write_csv(dir + "/gems.csv", gems);
-    Csv fire{{"theta_in_deg", "diamond_deg", "diamond_closed_form_deg", "moissanite_o_deg", "moissanite_o_and_e_deg"}, {}};
-    for (const FireRow& f : r.fire)
-        fire.add({fmt(f.theta_deg), fmt(f.diamond_deg), fmt(f.diamond_closed_deg), fmt(f.moissanite_o_deg),
-                  fmt(f.moissanite_oe_deg)});
+    const Csv fire = csv_table(r.fire);
     write_csv(dir + "/fire.csv", fire);
 
     if (gnuplot_available()) {
@@ -323,13 +341,11 @@ void write(const Result& r, const std::string& dir) {
        << " (`\"spectral\": false`), so the measured separations compare with one wavelength's theory.\n\n"
        << "## Calcite plate over a printed line\n\n"
        << "A calcite plate " << fmt(p.thickness) << " units thick, optic axis at " << fmt(p.axis_deg)
-       << "° to its normal, seen straight down (orthographic) over one bright line: the line appears twice.\n\n"
+       << "° to its normal, seen straight down (orthographic) over one bright line: " << doubling_text(r) << "\n\n"
        << plate.markdown(5) << "\n"
        << "Walk-off ρ = " << fmt(p.rho_deg, 5) << "° (tan ρ = (r − 1) tan θ / (1 + r tan²θ), r = n_o²/n_e²); "
        << "separation T·tan ρ = " << fmt(p.separation_theory, 5) << ", measured between the two images' centroids "
-       << fmt(p.separation_measured, 5) << " (pixel " << fmt(kPlateView / static_cast<double>(p.x.size()), 3)
-       << "). Through a linear analyser (exact polarisation) at 0° the ordinary image (field along the line) vanishes "
-       << "and at 90° the extraordinary one: the two images are polarised at right angles.\n\n"
+       << fmt(p.separation_measured, 5) << " (pixel " << fmt(p.pixel, 3) << "). " << analyser_text(r) << "\n\n"
        << "![plate](plate.png)\n\n![profile](plate_profile.png)\n\n"
        << "## Round brilliants seen through the table\n\n"
        << "`changed_fraction`: share of the table's pixels that differ by more than 0.05 from the same moissanite"

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/fields.h"
 #include "core/image.h"
 #include "experiments/experiment.h"
 
@@ -40,6 +41,8 @@ struct Plate {
     double rho_deg = 0;                 // walk-off, closed form (normal incidence)
     double separation_theory = 0;       // T tan ρ
     double separation_measured = 0;     // between the two images' centroids in the render
+    int bright_runs = 0;                // bright runs in the natural-light profile (two: the line doubled)
+    double pixel = 0;                   // scene units per pixel across the plate view
     std::array<double, 3> o_intensity{}, e_intensity{};  // no analyser, 0°, 90°
     std::vector<double> x;                               // profile abscissae
     std::array<std::vector<double>, 3> profile;          // the middle row, per analyser
@@ -69,12 +72,25 @@ struct FireRow {
     double moissanite_o_deg = 0, moissanite_oe_deg = 0;
 };
 
+// What the summary states beside its tables, each from the numbers (`judge`).
+struct Findings {
+    bool line_doubled = false;      // the natural-light profile has two bright runs
+    bool crossed_images = false;    // analyser 0°: o below a tenth of its brightness, e above half; 90°: the reverse
+};
+
 struct Result {
     bool quick = false;
     Plate plate;
     std::vector<GemRow> gems;
     std::vector<FireRow> fire;
+    Findings findings;  // judge(*this), set by compute
 };
+
+// The findings from a Result's numbers (pure; compute stores them in Result::findings) and
+// the summary's sentences that state them, worded by r.findings.
+Findings judge(const Result& r);
+std::string doubling_text(const Result& r);  // the line seen twice?
+std::string analyser_text(const Result& r);  // the images polarised at right angles?
 
 // The fire rows at internal incidence angles `thetas_deg` (below both gems' critical angles).
 std::vector<FireRow> fire_spread(const std::vector<double>& thetas_deg);
@@ -84,3 +100,47 @@ void write(const Result& r, const std::string& dir);
 void run(const ExperimentOptions& opt);
 
 }  // namespace refract::experiments::birefringence
+
+namespace refract {
+
+template <>
+struct Fields<experiments::birefringence::Plate> {
+    static auto list() {
+        using P = experiments::birefringence::Plate;
+        return std::make_tuple(
+            field("thickness", &P::thickness), field("axis_deg", &P::axis_deg), field("n_o", &P::n_o),
+            field("n_e", &P::n_e), field("rho_deg", &P::rho_deg).csv("walk_off_deg"),
+            field("separation_theory", &P::separation_theory), field("separation_measured", &P::separation_measured),
+            derived<P>("relative_error", [](const P& p) { return p.separation_measured / p.separation_theory - 1; }),
+            derived<P>("o_natural", [](const P& p) { return p.o_intensity[0]; }),
+            derived<P>("e_natural", [](const P& p) { return p.e_intensity[0]; }),
+            derived<P>("o_analyser_0", [](const P& p) { return p.o_intensity[1]; }),
+            derived<P>("e_analyser_0", [](const P& p) { return p.e_intensity[1]; }),
+            derived<P>("o_analyser_90", [](const P& p) { return p.o_intensity[2]; }),
+            derived<P>("e_analyser_90", [](const P& p) { return p.e_intensity[2]; }));
+    }
+};
+template <>
+struct Fields<experiments::birefringence::GemRow> {
+    static auto list() {
+        using G = experiments::birefringence::GemRow;
+        return std::make_tuple(field("id", &G::id), field("gem", &G::gem), field("axis", &G::axis).csv("optic_axis"),
+                               field("changed_fraction", &G::changed_fraction),
+                               field("rho_theory_deg", &G::rho_theory_deg).csv("walk_off_theory_deg"),
+                               field("rho_traced_deg", &G::rho_traced_deg).csv("walk_off_traced_deg"),
+                               field("offset_theory", &G::offset_theory), field("offset_traced", &G::offset_traced),
+                               field("seconds", &G::seconds).digits(3));
+    }
+};
+template <>
+struct Fields<experiments::birefringence::FireRow> {
+    static auto list() {
+        using F = experiments::birefringence::FireRow;
+        return std::make_tuple(field("theta_deg", &F::theta_deg).csv("theta_in_deg"), field("diamond_deg", &F::diamond_deg),
+                               field("diamond_closed_deg", &F::diamond_closed_deg).csv("diamond_closed_form_deg"),
+                               field("moissanite_o_deg", &F::moissanite_o_deg),
+                               field("moissanite_oe_deg", &F::moissanite_oe_deg).csv("moissanite_o_and_e_deg"));
+    }
+};
+
+}  // namespace refract

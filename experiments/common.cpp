@@ -66,14 +66,6 @@ void save_json(const std::string& dir, const std::string& name, const nlohmann::
     write_text_atomic((std::filesystem::path(dir) / name).string(), json_text(j));
 }
 
-RenderResult render_png(const Scene& scene, const std::string& path, int threads) {
-    RenderOptions opt;
-    opt.threads = threads;
-    RenderResult r = render(scene, opt);
-    write_image(path, r.image);
-    return r;
-}
-
 double rmse(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height) throw std::logic_error("rmse: images differ in size");
     double sum = 0;

@@ -1,6 +1,6 @@
 #pragma once
 // Helpers shared by the experiment drivers: scenes as JSON (saved beside the results so
-// `refract render` re-renders them), renders to PNG, image error, log-log fits.
+// `refract render` re-renders them), image error, log-log fits.
 #include <string>
 #include <vector>
 
@@ -18,9 +18,6 @@ Scene scene_from_json(const nlohmann::json& j, const std::string& name);
 // Writes `j` pretty-printed (2-space indent, trailing newline) to DIR/NAME atomically.
 void save_json(const std::string& dir, const std::string& name, const nlohmann::json& j);
 std::string json_text(const nlohmann::json& j);  // the exact text save_json writes
-
-// Renders `scene` with `threads` workers and writes the PNG (sRGB) atomically.
-RenderResult render_png(const Scene& scene, const std::string& path, int threads);
 
 // Root-mean-square difference over every pixel and channel; the images must match in size.
 double rmse(const Image& a, const Image& b);

@@ -51,15 +51,13 @@ std::vector<double> theta_profile(const FarFieldResult& r, int w, int c, int s) 
     return out;
 }
 
-std::vector<std::string> write_far_field(const std::string& dir, const FarFieldResult& r, const std::string& title,
-                                         const FarFieldFiles& opt) {
-    ensure_dir(dir);
-    std::vector<std::string> written;
+FarFieldTables far_field_tables(const FarFieldResult& r) {
+    FarFieldTables t;
     const int nw = static_cast<int>(r.wavelengths.size());
     const auto edges = theta_edges_deg(r);
     const int nt = theta_bins(r);
     // The θ profile.
-    Csv csv;
+    Csv& csv = t.profile;
     csv.header = {"wavelength_nm", "class", "class_name", "theta0_deg", "theta1_deg", "solid_angle_sr", "power", "intensity_per_sr"};
     if (r.components == 4)
         for (const char* h : {"S1", "S2", "S3", "degree_of_polarisation"}) csv.header.push_back(h);
@@ -85,10 +83,8 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldR
                 csv.add(std::move(row));
             }
         }
-    write_csv(dir + "/far_field.csv", csv);
-    written.push_back("far_field.csv");
     // The balance per wavelength.
-    Csv sum;
+    Csv& sum = t.balance;
     sum.header = {"wavelength_nm"};
     for (int c = 0; c < r.classes; ++c) sum.header.push_back("class" + std::to_string(c));
     for (const char* h : {"scattered", "unscattered", "absorbed", "dropped", "sum"}) sum.header.push_back(h);
@@ -96,10 +92,10 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldR
         std::vector<std::string> row{fmt(r.wavelengths[static_cast<size_t>(w)])};
         double scattered = 0;
         for (int c = 0; c < r.classes; ++c) {
-            double t = 0;
-            for (int b = 0; b < r.bins; ++b) t += r.at(w, c, 0, b);
-            scattered += t;
-            row.push_back(fmt(t, 12));
+            double v = 0;
+            for (int b = 0; b < r.bins; ++b) v += r.at(w, c, 0, b);
+            scattered += v;
+            row.push_back(fmt(v, 12));
         }
         const size_t k = static_cast<size_t>(w);
         for (double v : {scattered, r.unscattered[k], r.absorbed[k], r.dropped[k],
@@ -107,12 +103,12 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldR
             row.push_back(fmt(v, 12));
         sum.add(std::move(row));
     }
-    write_csv(dir + "/far_field_summary.csv", sum);
-    written.push_back("far_field_summary.csv");
     // The map.
     const int width = r.settings.binning == FarFieldSettings::Binning::Sphere ? r.settings.azimuth_bins : r.bins;
-    const int height = r.bins / width;
-    std::vector<std::string> names{"R", "G", "B", "total"};
+    t.map_width = width;
+    t.map_height = r.bins / width;
+    std::vector<std::string>& names = t.channels;
+    names = {"R", "G", "B", "total"};
     for (int c = 0; c < r.classes; ++c) names.push_back("class" + std::to_string(c));
     for (int w = 0; w < nw; ++w) names.push_back("w" + fmt(r.wavelengths[static_cast<size_t>(w)]));
     if (r.components == 4)
@@ -126,7 +122,8 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldR
         }
     }
     const size_t nc = names.size();
-    std::vector<double> data(static_cast<size_t>(r.bins) * nc, 0.0);
+    std::vector<double>& data = t.map;
+    data.assign(static_cast<size_t>(r.bins) * nc, 0.0);
     for (int b = 0; b < r.bins; ++b) {
         double* px = &data[static_cast<size_t>(b) * nc];
         const double inv = 1.0 / r.solid_angle(b);
@@ -145,37 +142,50 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldR
             for (int k = 0; k < 3; ++k) px[k] += rgb[k];
         }
     }
-    write_channels(dir + "/far_field.exr", width, height, names, data,
-                   {{"refract:far_field_binning", binning_text(r)},
+    t.attributes = {{"refract:far_field_binning", binning_text(r)},
                     {"refract:far_field", r.settings.binning == FarFieldSettings::Binning::Sphere ? "sphere" : "axis"},
                     {"refract:far_field_axis", fmt(r.settings.axis.x()) + " " + fmt(r.settings.axis.y()) + " " + fmt(r.settings.axis.z())},
                     {"refract:far_field_reference",
                      fmt(r.settings.reference.x()) + " " + fmt(r.settings.reference.y()) + " " + fmt(r.settings.reference.z())},
-                    {"refract:far_field_units", "fraction of the emitted power per steradian"}});
+                    {"refract:far_field_units", "fraction of the emitted power per steradian"}};
+    // The figure's data: intensity against θ per class, averaged over the wavelengths.
+    Csv& fig = t.plot;
+    fig.header = {"theta_deg"};
+    for (int c = 0; c < r.classes; ++c) fig.header.push_back("class" + std::to_string(c));
+    std::vector<std::vector<double>> prof(static_cast<size_t>(r.classes), std::vector<double>(static_cast<size_t>(nt), 0.0));
+    for (int w = 0; w < nw; ++w)
+        for (int c = 0; c < r.classes; ++c) {
+            const auto p = theta_profile(r, w, c);
+            for (int b = 0; b < nt; ++b) prof[static_cast<size_t>(c)][static_cast<size_t>(b)] += p[static_cast<size_t>(b)] / nw;
+        }
+    for (int b = 0; b < nt; ++b) {
+        std::vector<std::string> row{fmt(0.5 * (edges[static_cast<size_t>(b)] + edges[static_cast<size_t>(b) + 1]), 8)};
+        for (int c = 0; c < r.classes; ++c) row.push_back(fmt(prof[static_cast<size_t>(c)][static_cast<size_t>(b)], 10));
+        fig.add(std::move(row));
+    }
+    for (int c = 0; c < r.classes; ++c) t.class_names.push_back(r.class_name(c));
+    return t;
+}
+
+std::vector<std::string> write_far_field(const std::string& dir, const FarFieldTables& t, const std::string& title,
+                                         const FarFieldFiles& opt) {
+    ensure_dir(dir);
+    std::vector<std::string> written;
+    write_csv(dir + "/far_field.csv", t.profile);
+    written.push_back("far_field.csv");
+    write_csv(dir + "/far_field_summary.csv", t.balance);
+    written.push_back("far_field_summary.csv");
+    write_channels(dir + "/far_field.exr", t.map_width, t.map_height, t.channels, t.map, t.attributes);
     written.push_back("far_field.exr");
     // The figure: intensity against θ per class, averaged over the wavelengths.
     if (opt.plot && gnuplot_available()) {
-        Csv fig;
-        fig.header = {"theta_deg"};
-        for (int c = 0; c < r.classes; ++c) fig.header.push_back("class" + std::to_string(c));
-        std::vector<std::vector<double>> prof(static_cast<size_t>(r.classes), std::vector<double>(static_cast<size_t>(nt), 0.0));
-        for (int w = 0; w < nw; ++w)
-            for (int c = 0; c < r.classes; ++c) {
-                const auto p = theta_profile(r, w, c);
-                for (int b = 0; b < nt; ++b) prof[static_cast<size_t>(c)][static_cast<size_t>(b)] += p[static_cast<size_t>(b)] / nw;
-            }
-        for (int b = 0; b < nt; ++b) {
-            std::vector<std::string> row{fmt(0.5 * (edges[static_cast<size_t>(b)] + edges[static_cast<size_t>(b) + 1]), 8)};
-            for (int c = 0; c < r.classes; ++c) row.push_back(fmt(prof[static_cast<size_t>(c)][static_cast<size_t>(b)], 10));
-            fig.add(std::move(row));
-        }
-        write_csv(dir + "/far_field_plot.csv", fig);
+        write_csv(dir + "/far_field_plot.csv", t.plot);
         std::string body = "set title \"" + title + "\" noenhanced\nset xlabel \"angle from the axis (degrees)\"\n"
                            "set ylabel \"intensity (fraction of the emitted power per sr)\"\nset logscale y\nset format y \"10^{%L}\"\n"
                            "set xrange [0:180]\nset key outside right\nset datafile separator \",\"\nplot ";
-        for (int c = 0; c < r.classes; ++c)
+        for (size_t c = 0; c < t.class_names.size(); ++c)
             body += std::string(c ? ", " : "") + "\"far_field_plot.csv\" using 1:($" + std::to_string(c + 2) + " > 0 ? $" +
-                    std::to_string(c + 2) + " : NaN) skip 1 with lines title \"" + r.class_name(c) + "\"";
+                    std::to_string(c + 2) + " : NaN) skip 1 with lines title \"" + t.class_names[c] + "\"";
         body += "\n";
         FigureSize size;  // room for the classes' key beside the plot
         size.width_px = 1040;

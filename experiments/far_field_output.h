@@ -15,8 +15,11 @@
 //                              binning in the header (refract:far_field_*)
 //   DIR/far_field.png/.pdf/.gp intensity against θ per class (gnuplot; skipped without it)
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/far_field.h"
+#include "experiments/plot.h"
 
 namespace refract::experiments {
 
@@ -24,8 +27,22 @@ struct FarFieldFiles {
     bool plot = true;  // false: no gnuplot figure
 };
 
+// Everything the files above hold, computed from a FarFieldResult (the θ profiles, the
+// balance, the map's channels and colour, the figure's data), so that writing is formatting.
+struct FarFieldTables {
+    Csv profile;  // far_field.csv
+    Csv balance;  // far_field_summary.csv
+    int map_width = 0, map_height = 0;
+    std::vector<std::string> channels;  // far_field.exr
+    std::vector<double> map;
+    std::vector<std::pair<std::string, std::string>> attributes;
+    Csv plot;                                // far_field_plot.csv: θ bin centre, intensity per class
+    std::vector<std::string> class_names;    // the figure's curves
+};
+FarFieldTables far_field_tables(const FarFieldResult& r);
+
 // Writes the files above into `dir` (created); returns the names written.
-std::vector<std::string> write_far_field(const std::string& dir, const FarFieldResult& r, const std::string& title,
+std::vector<std::string> write_far_field(const std::string& dir, const FarFieldTables& t, const std::string& title,
                                          const FarFieldFiles& opt = {});
 
 // Intensity (fraction per sr) against θ: the sphere binning summed over φ, per

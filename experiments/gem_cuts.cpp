@@ -133,7 +133,17 @@ Result compute(const ExperimentOptions& opt) {
         r.sensitivity.push_back(s);
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.findings = judge(r);
     return r;
+}
+
+Findings judge(const Result& r) {
+    Findings f;
+    if (r.presets.size() >= 2) {
+        const BrilliantCut &a = r.presets[0].second.cut, &b = r.presets[1].second.cut;
+        f.presets_share_angles = a.crown_angle == b.crown_angle && a.pavilion_angle == b.pavilion_angle;
+    }
+    return f;
 }
 
 void run(const ExperimentOptions& opt) { write(compute(opt), opt.out_dir); }

@@ -47,7 +47,13 @@ struct Sensitivity {
     double crown_pavilion_spread = 0;  // max − min over the crown × pavilion map, for scale
 };
 
+// What the summary states beside its tables, each from the numbers (`judge`).
+struct Findings {
+    bool presets_share_angles = false;  // Tolkowsky and GIA default: the same crown and pavilion angles
+};
+
 struct Result {
+    Findings findings;  // judge(*this), set by compute
     bool quick = false;
     gem_sweep::Sweep main, detail;
     std::vector<gem_sweep::Row> main_rows, detail_rows;  // in cut order
@@ -60,5 +66,10 @@ struct Result {
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);
+
+// The findings from a Result's numbers (pure; compute stores them in Result::findings) and
+// the summary's words about the two reference cuts' marks, worded by r.findings.
+Findings judge(const Result& r);
+std::string marks_text(const Result& r);
 
 }  // namespace refract::experiments::gem_cuts

@@ -62,6 +62,15 @@ std::string num(double v) { return fmt(v, 4); }
 
 }  // namespace
 
+std::string marks_text(const Result& r) {
+    const BrilliantCut &tolk = r.presets.at(0).second.cut, &gia = r.presets.at(1).second.cut;
+    if (r.findings.presets_share_angles)
+        return "(the same angles, table " + num(gia.table) + " % against " + num(tolk.table) + " %)";
+    return "(crown " + num(gia.crown_angle) + "°, pavilion " + num(gia.pavilion_angle) + "°, table " + num(gia.table) +
+           " %, against Tolkowsky's " + num(tolk.crown_angle) + "°, " + num(tolk.pavilion_angle) + "°, " +
+           num(tolk.table) + " %)";
+}
+
 void write(const Result& r, const std::string& dir) {
     ensure_dir(dir);
     write_text_atomic(dir + "/gem_cuts_sweep.csv", csv_of(r.main_rows));
@@ -111,7 +120,7 @@ void write(const Result& r, const std::string& dir) {
       << " %).\n\n"
       << "## Where each metric is best, and Tolkowsky's distance from it\n\n"
       << "Contour maps `gem_cuts_METRIC.png` / `.pdf` (crown angle × pavilion angle, the other parameters the GIA default; open circle Tolkowsky, "
-      << "black square GIA default (the same angles, table 57 % against 53 %), blue star the grid's best). The grid's best value is the largest of many "
+      << "black square GIA default " << marks_text(r) << ", blue star the grid's best). The grid's best value is the largest of many "
       << "noisy cells and so biased towards better; the difference is given in combined standard errors.\n\n"
       << "| metric | best crown | best pavilion | best value ± error | Tolkowsky ± error | Δcrown | Δpavilion | "
          "difference / σ |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";

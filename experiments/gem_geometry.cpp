@@ -12,6 +12,7 @@
 
 #include "core/random.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/plot.h"
 
 namespace refract::experiments::gem_geometry {
@@ -126,19 +127,19 @@ IntersectionTiming time_intersections(const std::string& preset, const Gem& gem,
 
 namespace {
 
-std::string outline_text(const Gem& gem) {
+std::string outline_text(const PresetResult& pr) {
     // gnuplot data: one index block per view (two blank lines), one polygon per block
     // of lines (one blank line).
     std::ostringstream o;
     o << "# facet outlines of the round brilliant (girdle radius 1): x,y\n"
       << "# index 0: crown from above; 1: pavilion from below (mirrored); 2: side, from -y (x, z)\n";
     bool first_view = true;
-    for (const char* view : {"crown", "pavilion", "side"}) {
+    for (const auto& [view, lines] : pr.outlines) {
         if (!first_view) o << "\n\n";
         first_view = false;
         o << "# " << view << "\n";
         bool first = true;
-        for (const Outline& ol : outlines(gem, view)) {
+        for (const Outline& ol : lines) {
             if (!first) o << "\n";
             first = false;
             o << "# " << ol.label << "\n";
@@ -184,6 +185,7 @@ Result compute(const ExperimentOptions& opt) {
         pr.proportions = proportion_rows(p, pr.gem);
         for (const auto& row : pr.proportions) r.worst = std::max(r.worst, std::abs(row.measured - row.expected));
         pr.facet_counts = facet_counts(pr.gem);
+        for (const char* view : {"crown", "pavilion", "side"}) pr.outlines.emplace_back(view, outlines(pr.gem, view));
         r.presets.push_back(std::move(pr));
     }
     for (auto& pr : r.presets) pr.timing = time_intersections(pr.preset, pr.gem, opt.quick ? 4000 : 200000);
@@ -206,8 +208,7 @@ void write(const Result& r, const std::string& dir) {
             << "below is measured on the built polyhedron.\n\n";
 
     // Proportions.
-    Csv prop;
-    prop.header = {"preset", "quantity", "unit", "source", "expected", "measured", "abs_diff"};
+    Csv prop{csv_header<ProportionRow>(), {}};
     std::ostringstream md;
     md << "| preset | quantity | unit | source | expected | measured | abs diff |\n|---|---|---|---|---:|---:|---:|\n";
     Csv facets;
@@ -215,7 +216,7 @@ void write(const Result& r, const std::string& dir) {
     for (const auto& pr : r.presets) {
         for (const auto& row : pr.proportions) {
             const double d = std::abs(row.measured - row.expected);
-            prop.add({row.preset, row.quantity, row.unit, row.source, fmt(row.expected), fmt(row.measured), fmt(d)});
+            prop.add(csv_cells(row));
             md << "| " << row.preset << " | " << row.quantity << " | " << row.unit << " | " << row.source << " | "
                << md_num(row.expected) << " | " << md_num(row.measured) << " | " << fmt(d, 2) << " |\n";
         }
@@ -231,7 +232,7 @@ void write(const Result& r, const std::string& dir) {
 
     // Line drawings.
     for (const auto& pr : r.presets)
-        write_text_atomic(dir + "/gem_outline_" + pr.preset + ".csv", outline_text(pr.gem));
+        write_text_atomic(dir + "/gem_outline_" + pr.preset + ".csv", outline_text(pr));
     const FigureSize size{1200, 420 * static_cast<int>(presets.size()) + 40, 9.0,
                           3.1 * static_cast<double>(presets.size()) + 0.3};
     gnuplot_figure(dir, "gem_drawings", drawings_body(presets), size);
@@ -240,9 +241,7 @@ void write(const Result& r, const std::string& dir) {
             << "(gnuplot index blocks 0, 1, 2). Facet counts in `gem_facets.csv`.\n\n";
 
     // Intersection cost.
-    Csv timing;
-    timing.header = {"preset", "planes", "triangles", "rays", "hits", "agree", "plane_ns_per_ray", "mesh_ns_per_ray",
-                     "mesh_over_plane"};
+    Csv timing{csv_header<IntersectionTiming>(), {}};
     summary << "## Ray–gem intersection: plane set against triangle mesh\n\n"
             << "The same random rays (from a sphere of radius 3 towards the bounding box), best of three passes, "
             << "one thread (`gem_intersection.csv`). Timings are of this machine and run.\n\n"
@@ -250,9 +249,7 @@ void write(const Result& r, const std::string& dir) {
             << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& pr : r.presets) {
         const IntersectionTiming& t = pr.timing;
-        timing.add({t.preset, std::to_string(t.planes), std::to_string(t.triangles), std::to_string(t.rays),
-                    std::to_string(t.hits), std::to_string(t.agree), fmt(t.plane_ns, 4), fmt(t.mesh_ns, 4),
-                    fmt(t.mesh_ns / t.plane_ns, 3)});
+        timing.add(csv_cells(t));
         summary << "| " << t.preset << " | " << t.planes << " | " << t.triangles << " | " << t.rays << " | " << t.hits
                 << " | " << t.agree << " | " << fmt(t.plane_ns, 3) << " | " << fmt(t.mesh_ns, 3) << " | "
                 << fmt(t.mesh_ns / t.plane_ns, 3) << " |\n";
@@ -260,8 +257,6 @@ void write(const Result& r, const std::string& dir) {
     write_csv(dir + "/gem_intersection.csv", timing);
 
     // Renders.
-    Csv renders;
-    renders.header = {"preset", "width", "height", "seconds", "primary_rays", "segments", "shadow_rays"};
     std::vector<Panel> panels;
     summary << "\n## Rendered diamonds (n = 2.417, Fresnel, no dispersion)\n\n"
             << "| preset | image | scene | seconds | segments |\n|---|---|---|---:|---:|\n";
@@ -270,14 +265,11 @@ void write(const Result& r, const std::string& dir) {
         save_json(dir, stem + ".json", pr.scene);
         write_image(dir + "/" + stem + ".png", pr.render.image);
         const RenderStats& st = pr.render.stats;
-        renders.add({pr.preset, std::to_string(pr.render.image.width), std::to_string(pr.render.image.height),
-                     fmt(st.seconds, 3), std::to_string(st.primary_rays), std::to_string(st.segments),
-                     std::to_string(st.shadow_rays)});
         panels.push_back({stem + ".png", pr.preset});
         summary << "| " << pr.preset << " | `" << stem << ".png` | `" << stem << ".json` | " << fmt(st.seconds, 3)
                 << " | " << st.segments << " |\n";
     }
-    write_csv(dir + "/gem_renders.csv", renders);
+    write_csv(dir + "/gem_renders.csv", csv_table(r.presets));
     image_grid_figure(dir, "gem_renders", 1, static_cast<int>(panels.size()), panels,
                       "Round brilliant presets, Fresnel diamond n = 2.417", 0.75, r.quick ? 200 : 420);
     summary << "\n`gem_renders.png` / `.pdf` shows them side by side; `refract render gem_render_PRESET.json -o x.png` "

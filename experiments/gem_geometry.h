@@ -4,11 +4,14 @@
 // profile), the proportions measured back from the exact polyhedron against the requested
 // and closed-form values, a rendered Fresnel diamond (no dispersion) per preset, and the
 // cost of a ray–gem intersection with the plane set against the triangle mesh.
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/fields.h"
 #include "core/render.h"
 #include "experiments/experiment.h"
 #include "geometry/gem/brilliant.h"
@@ -62,6 +65,7 @@ struct PresetResult {
     IntersectionTiming timing;
     nlohmann::json scene;  // the rendered Fresnel diamond's scene
     RenderResult render;
+    std::vector<std::pair<std::string, std::vector<Outline>>> outlines;  // per view: "crown", "pavilion", "side"
 };
 
 struct Result {
@@ -74,3 +78,54 @@ Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);
 
 }  // namespace refract::experiments::gem_geometry
+
+namespace refract {
+
+template <>
+struct Fields<experiments::gem_geometry::ProportionRow> {
+    static auto list() {
+        using P = experiments::gem_geometry::ProportionRow;
+        return std::make_tuple(field("preset", &P::preset), field("quantity", &P::quantity), field("unit", &P::unit),
+                               field("source", &P::source), field("expected", &P::expected), field("measured", &P::measured),
+                               derived<P>("abs_diff", [](const P& p) { return std::abs(p.measured - p.expected); }).csv_only());
+    }
+};
+template <>
+struct Fields<experiments::gem_geometry::IntersectionTiming> {
+    static auto list() {
+        using T = experiments::gem_geometry::IntersectionTiming;
+        return std::make_tuple(field("preset", &T::preset), field("planes", &T::planes), field("triangles", &T::triangles),
+                               field("rays", &T::rays), field("hits", &T::hits), field("agree", &T::agree),
+                               field("plane_ns", &T::plane_ns).csv("plane_ns_per_ray").digits(4),
+                               field("mesh_ns", &T::mesh_ns).csv("mesh_ns_per_ray").digits(4),
+                               derived<T>("mesh_over_plane", [](const T& t) { return t.mesh_ns / t.plane_ns; }).digits(3).csv_only());
+    }
+};
+// The rendered diamond of gem_renders.csv, and the preset's dict in Python.
+template <>
+struct Fields<experiments::gem_geometry::PresetResult> {
+    static auto list() {
+        using P = experiments::gem_geometry::PresetResult;
+        return std::make_tuple(field("preset", &P::preset), field("proportions", &P::proportions).python_only(),
+                               field("facet_counts", &P::facet_counts).python_only(),
+                               field("timing", &P::timing).python_only(), field("scene", &P::scene).python_only(),
+                               derived<P>("rgb", [](const P& p) -> const Image& { return p.render.image; }).python_only(),
+                               derived<P>("width", [](const P& p) { return p.render.image.width; }).csv_only(),
+                               derived<P>("height", [](const P& p) { return p.render.image.height; }).csv_only(),
+                               derived<P>("render_seconds", [](const P& p) { return p.render.stats.seconds; })
+                                   .csv("seconds")
+                                   .digits(3),
+                               derived<P>("primary_rays", [](const P& p) { return p.render.stats.primary_rays; }).csv_only(),
+                               derived<P>("segments", [](const P& p) { return p.render.stats.segments; }).csv_only(),
+                               derived<P>("shadow_rays", [](const P& p) { return p.render.stats.shadow_rays; }).csv_only());
+    }
+};
+template <>
+struct Fields<experiments::gem_geometry::Result> {
+    static auto list() {
+        using R = experiments::gem_geometry::Result;
+        return std::make_tuple(field("quick", &R::quick), field("worst", &R::worst), field("presets", &R::presets));
+    }
+};
+
+}  // namespace refract

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/fields.h"
 #include "geometry/gem/brilliant.h"
 
 namespace refract::gem_metrics {
@@ -78,3 +79,43 @@ void validate(const MetricOptions& options);
 GemMetrics measure(const Gem& gem, const MetricOptions& options);
 
 }  // namespace refract::gem_metrics
+
+namespace refract {
+
+template <>
+struct Fields<gem_metrics::Metric> {
+    static auto list() {
+        using M = gem_metrics::Metric;
+        return std::make_tuple(field("value", &M::value), field("error", &M::error));
+    }
+};
+template <>
+struct Fields<gem_metrics::GemMetrics::Balance> {
+    static auto list() {
+        using B = gem_metrics::GemMetrics::Balance;
+        return std::make_tuple(field("crown", &B::crown), field("girdle", &B::girdle), field("pavilion", &B::pavilion),
+                               field("lost", &B::lost), field("missed", &B::missed));
+    }
+};
+template <>
+struct Fields<gem_metrics::GemMetrics::Aset> {
+    static auto list() {
+        using A = gem_metrics::GemMetrics::Aset;
+        return std::make_tuple(field("red", &A::red), field("green", &A::green), field("blue", &A::blue),
+                               field("white", &A::white));
+    }
+};
+// The Python module's metrics dict (python/src/gem.cpp).
+template <>
+struct Fields<gem_metrics::GemMetrics> {
+    static auto list() {
+        using G = gem_metrics::GemMetrics;
+        return std::make_tuple(field("light_return", &G::light_return), field("fire", &G::fire),
+                               field("leakage", &G::leakage), field("scintillation", &G::scintillation),
+                               field("leakage_by_kind", &G::leakage_by_kind), field("balance", &G::balance),
+                               field("aset", &G::aset), field("rays", &G::light_return_rays),
+                               field("fire_pixels", &G::fire_pixels), field("scintillation_pixels", &G::scintillation_pixels));
+    }
+};
+
+}  // namespace refract

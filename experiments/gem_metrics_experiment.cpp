@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/gem_observation.h"
 #include "experiments/plot.h"
 
@@ -111,6 +112,16 @@ Result compute(const ExperimentOptions& opt) {
         cut.pavilion_angle = a;
         r.pavilion_scan.push_back({a, gem_metrics::measure(build_brilliant(cut), r.options)});
     }
+    std::vector<double> n;
+    for (const auto& c : r.convergence) n.push_back(c.rays);
+    for (const auto& k : kMetrics) {
+        std::vector<double> err;
+        for (const auto& c : r.convergence) err.push_back((c.metrics.*(k.field)).error);
+        r.convergence_slopes.emplace_back(k.name, loglog_fit(n, err).slope);
+    }
+    for (const auto& [file, view] : viewer_maps())
+        r.viewer_map_images.emplace_back(file, gem_metrics::viewer_environment(view, kViewerMapWidth));
+    r.viewer_scene_files = viewer_scenes(320);
     return r;
 }
 
@@ -176,8 +187,7 @@ void write(const Result& r, const std::string& dir) {
             for (const auto& [kind, v] : m->leakage_by_kind) kinds.add({p.preset, model, kind, fmt(v)});
     }
     write_csv(dir + "/gem_leakage_by_kind.csv", kinds);
-    Csv aset;
-    aset.header = {"preset", "polarisation", "red", "green", "blue", "white"};
+    Csv aset{csv_join({"preset", "polarisation"}, csv_header<GemMetrics::Aset>()), {}};
     s << "\nBy ASET zone (the same rays; zones about the direction to the eye):\n\n"
       << "| preset | red 45–75° | green 0–45° | blue 75–90° (viewer) | white (below the horizon) |\n"
       << "|---|---:|---:|---:|---:|\n";
@@ -186,7 +196,7 @@ void write(const Result& r, const std::string& dir) {
         s << "| " << p.preset << " | " << fmt(a.red, 4) << " | " << fmt(a.green, 4) << " | " << fmt(a.blue, 4) << " | "
           << fmt(a.white, 4) << " |\n";
         for (const auto& [model, m] : {std::pair{"exact", &p.exact}, std::pair{"natural", &p.natural}})
-            aset.add({p.preset, model, fmt(m->aset.red), fmt(m->aset.green), fmt(m->aset.blue), fmt(m->aset.white)});
+            aset.add(csv_join({p.preset, model}, csv_cells(m->aset)));
     }
     write_csv(dir + "/gem_aset.csv", aset);
 
@@ -204,30 +214,17 @@ void write(const Result& r, const std::string& dir) {
     write_csv(dir + "/gem_cost.csv", cost);
 
     // Convergence.
-    Csv conv;
-    conv.header = {"rays", "light_return_error", "fire_error", "leakage_error", "scintillation_error"};
-    std::vector<double> n;
-    std::vector<std::vector<double>> err(4);
-    for (const auto& c : r.convergence) {
-        std::vector<std::string> row{std::to_string(c.rays)};
-        n.push_back(c.rays);
-        for (size_t k = 0; k < 4; ++k) {
-            const double e = (c.metrics.*(kMetrics[k].field)).error;
-            err[k].push_back(e);
-            row.push_back(fmt(e));
-        }
-        conv.add(row);
-    }
-    write_csv(dir + "/gem_convergence.csv", conv);
+    write_csv(dir + "/gem_convergence.csv", csv_table(r.convergence));
     s << "\n## Convergence (Tolkowsky, exact)\n\nStandard error against the light-return ray count (fire and "
       << "scintillation pixels scale with it), `gem_convergence.csv`, `gem_convergence.png`; least-squares slope "
       << "on log–log axes (−0.5 expected):\n\n| metric | slope |\n|---|---:|\n";
-    for (size_t k = 0; k < 4; ++k) s << "| " << kMetrics[k].name << " | " << fmt(loglog_fit(n, err[k]).slope, 3) << " |\n";
+    for (const auto& [name, slope] : r.convergence_slopes) s << "| " << name << " | " << fmt(slope, 3) << " |\n";
     std::ostringstream gp;
     gp << "set datafile separator comma\nset logscale xy\nset key top right\nset grid\n"
        << "set xlabel 'eye rays (light return, leakage)'\nset ylabel 'standard error'\n"
        << "set title 'Gem metrics: statistical error against ray count (Tolkowsky, exact polarisation)'\n"
-       << "ref = " << fmt(err[0][0] * std::sqrt(n[0])) << "\n"
+       << "ref = "
+       << fmt(r.convergence[0].metrics.light_return.error * std::sqrt(static_cast<double>(r.convergence[0].rays))) << "\n"
        << "plot 'gem_convergence.csv' skip 1 using 1:2 with linespoints title 'light return', "
        << "'' skip 1 using 1:3 with linespoints title 'fire', '' skip 1 using 1:4 with linespoints title 'leakage', "
        << "'' skip 1 using 1:5 with linespoints title 'scintillation', "
@@ -235,21 +232,7 @@ void write(const Result& r, const std::string& dir) {
     gnuplot_figure(dir, "gem_convergence", gp.str());
 
     // Pavilion-angle scan.
-    Csv scan;
-    scan.header = {"pavilion_angle"};
-    for (const auto& k : kMetrics) {
-        scan.header.push_back(k.name);
-        scan.header.push_back(std::string(k.name) + "_error");
-    }
-    for (const auto& row : r.pavilion_scan) {
-        std::vector<std::string> cells{fmt(row.pavilion_angle)};
-        for (const auto& k : kMetrics) {
-            cells.push_back(fmt((row.metrics.*(k.field)).value));
-            cells.push_back(fmt((row.metrics.*(k.field)).error));
-        }
-        scan.add(cells);
-    }
-    write_csv(dir + "/gem_pavilion_scan.csv", scan);
+    write_csv(dir + "/gem_pavilion_scan.csv", csv_table(r.pavilion_scan));
     std::ostringstream ps;
     ps << "set datafile separator comma\nset grid\nunset key\nset xlabel 'pavilion angle (deg)'\n"
        << "set multiplot layout 2,2 title 'GIA default proportions, pavilion angle varied (exact, ±1 standard error)'\n";
@@ -309,9 +292,8 @@ void write(const Result& r, const std::string& dir) {
       << "viewing hole, white leakage), arrows (face up) and hearts (table down, seen from below) through the "
       << "reflector viewer, and the brilliance set-up's radiance. Single images: `gem_view_PRESET_VIEW.png`.\n";
     // The viewers as scene files (the same as scenes/gems/).
-    for (const auto& [file, view] : viewer_maps())
-        write_image(dir + "/" + file, gem_metrics::viewer_environment(view, kViewerMapWidth));
-    for (const auto& [file, scene] : viewer_scenes(320)) save_json(dir, file, scene);
+    for (const auto& [file, image] : r.viewer_map_images) write_image(dir + "/" + file, image);
+    for (const auto& [file, scene] : r.viewer_scene_files) save_json(dir, file, scene);
     s << "\nThe viewers as scene files (`tolkowsky-VIEW.json` with the environment maps `viewer-VIEW.exr`, the "
       << "same as `scenes/gems/`): `refract render tolkowsky-aset.json -o aset.png` renders the stone in the ASET "
       << "viewer with the spectral eye pass (dispersion) and exact polarisation.\n";

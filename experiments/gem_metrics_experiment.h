@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/fields.h"
 #include "core/image.h"
 #include "experiments/experiment.h"
 #include "experiments/gem_metrics.h"
@@ -45,7 +46,13 @@ struct Result {
     int image_size = 0, image_samples = 0;
     std::vector<PresetResult> presets;
     std::vector<ConvergenceRow> convergence;  // Tolkowsky's cut at growing ray counts
+    // Least-squares slope of log standard error against log rays, per metric (light return,
+    // fire, leakage, scintillation).
+    std::vector<std::pair<std::string, double>> convergence_slopes;
     std::vector<ScanRow> pavilion_scan;       // the metrics against the pavilion angle
+    // The viewers as files (the same as scenes/gems/): environment maps (file, image) and scenes.
+    std::vector<std::pair<std::string, Image>> viewer_map_images;
+    std::vector<std::pair<std::string, nlohmann::json>> viewer_scene_files;
 };
 
 // A viewer as a scene file for `refract render` (scenes/gems/): the preset's stone
@@ -63,3 +70,34 @@ Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);
 
 }  // namespace refract::experiments::gem_metrics_experiment
+
+namespace refract {
+
+template <>
+struct Fields<experiments::gem_metrics_experiment::ConvergenceRow> {
+    static auto list() {
+        using C = experiments::gem_metrics_experiment::ConvergenceRow;
+        return std::make_tuple(field("rays", &C::rays),
+                               derived<C>("light_return_error", [](const C& c) { return c.metrics.light_return.error; }),
+                               derived<C>("fire_error", [](const C& c) { return c.metrics.fire.error; }),
+                               derived<C>("leakage_error", [](const C& c) { return c.metrics.leakage.error; }),
+                               derived<C>("scintillation_error", [](const C& c) { return c.metrics.scintillation.error; }));
+    }
+};
+template <>
+struct Fields<experiments::gem_metrics_experiment::ScanRow> {
+    static auto list() {
+        using S = experiments::gem_metrics_experiment::ScanRow;
+        return std::make_tuple(field("pavilion_angle", &S::pavilion_angle),
+                               derived<S>("light_return", [](const S& s) { return s.metrics.light_return.value; }),
+                               derived<S>("light_return_error", [](const S& s) { return s.metrics.light_return.error; }),
+                               derived<S>("fire", [](const S& s) { return s.metrics.fire.value; }),
+                               derived<S>("fire_error", [](const S& s) { return s.metrics.fire.error; }),
+                               derived<S>("leakage", [](const S& s) { return s.metrics.leakage.value; }),
+                               derived<S>("leakage_error", [](const S& s) { return s.metrics.leakage.error; }),
+                               derived<S>("scintillation", [](const S& s) { return s.metrics.scintillation.value; }),
+                               derived<S>("scintillation_error", [](const S& s) { return s.metrics.scintillation.error; }));
+    }
+};
+
+}  // namespace refract

@@ -16,6 +16,7 @@
 #include "core/spectrum/cie.h"
 #include "core/spectrum/dispersion.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/ohtsuka1998_maps.h"
 #include "experiments/ohtsuka1998_result.h"
 #include "experiments/plot.h"
@@ -130,11 +131,11 @@ Diff difference(const Image& a, const Image& b) {
     return d;
 }
 
-void write_diff_image(const std::string& path, const Image& a, const Image& b, double gain) {
+Image diff_image(const Image& a, const Image& b, double gain) {
     Image d(a.width, a.height);
     for (int j = 0; j < a.height; ++j)
         for (int i = 0; i < a.width; ++i) d.set(i, j, ((a.at(i, j) - b.at(i, j)).cwiseAbs() * gain).cwiseMin(1.0));
-    write_image(path, d);
+    return d;
 }
 
 std::string f3(double v) { return fmt(v, 3); }
@@ -181,6 +182,11 @@ Result compute(const ExperimentOptions& opt) {
     r.first.element_size = opt.quick ? 0.1 : kFirstElement;
     r.first_image = run_both(make(r.first, "scene-first.json"), T).r.image;
     r.shortcut_diff = difference(r.full.image, r.fast.image);
+    r.difference_x10 = diff_image(r.full.image, r.fast.image, 10.0);
+    r.base_scene = scene_json(base);
+    r.shortcut_scene = scene_json(r.shortcut);
+    r.box_scene = scene_json(r.box);
+    r.first_scene = scene_json(r.first);
 
     // ---- Study: wavelength step ------------------------------------------------------------
     SceneParams& st = r.study;
@@ -293,17 +299,19 @@ void write(const Result& r, const std::string& dir) {
     const MapStudyPlan& plan = r.plan;
     const MapStudies& ms = r.maps;
     const int threads_used = r.threads_used;
+    const json& scene = r.base_scene;  // the "here" column of the conditions, from the scene file
+    const json& spectral = scene["render"]["spectral"];
     std::ostringstream md;
     md << "# Ohtsuka & Kawai 1998: dispersion in a diamond with bidirectional ray tracing\n\n";
 
-    save_json(dir, "scene.json", scene_json(base));
-    save_json(dir, "scene-shortcut.json", scene_json(r.shortcut));
+    save_json(dir, "scene.json", r.base_scene);
+    save_json(dir, "scene-shortcut.json", r.shortcut_scene);
     write_image(path("diamond.png"), r.full.image);
     write_image(path("diamond-shortcut.png"), r.fast.image);
-    write_diff_image(path("difference-x10.png"), r.full.image, r.fast.image, 10.0);
-    save_json(dir, "scene-box.json", scene_json(r.box));
+    write_image(path("difference-x10.png"), r.difference_x10);
+    save_json(dir, "scene-box.json", r.box_scene);
     write_image(path("diamond-box.png"), r.box_image);
-    save_json(dir, "scene-first.json", scene_json(first));
+    save_json(dir, "scene-first.json", r.first_scene);
     write_image(path("diamond-first.png"), r.first_image);
     const Diff& d = r.shortcut_diff;
     const double eye_full = r.eye_s, eye_fast = r.fast.stats.seconds;
@@ -322,8 +330,10 @@ void write(const Result& r, const std::string& dir) {
        << "| patches | 244 | " << r.gem_planes << " facet planes + 1 floor plane |\n"
        << "| elements | 74 536 | " << r.map_elements << " (floor square, edge " << base.element_size << ") |\n"
        << "| image size | 640×480 | " << base.width << "×" << base.height << " |\n"
-       << "| lights | 1 | 1 |\n| max reflections | 8 | 8 |\n| max transmissions | 8 | 8 |\n"
-       << "| visible range | 400–700 nm | 400–700 nm |\n| sampling interval | 10 nm | " << base.step_nm << " nm |\n"
+       << "| lights | 1 | " << scene["lights"].size() << " |\n| max reflections | 8 | "
+       << spectral["max_reflections"].dump() << " |\n| max transmissions | 8 | " << spectral["max_transmissions"].dump()
+       << " |\n| visible range | 400–700 nm | " << spectral["range"][0].dump() << "–" << spectral["range"][1].dump()
+       << " nm |\n| sampling interval | 10 nm | " << base.step_nm << " nm |\n"
        << "| photons | — | " << r.map_photons << " (" << r.map_deposits << " deposits, "
        << fmt(static_cast<double>(r.map_photons) / r.light_s, 3) << " photons/s) |\n"
        << "| map reconstruction | — | " << filter_name(base.filter) << " |\n\n"
@@ -349,49 +359,20 @@ void write(const Result& r, const std::string& dir) {
     times.add({"eye_shortcut", "26.3", fmt(eye_fast)});
     write_csv(path("times.csv"), times);
 
-    Csv steps{{"step_nm", "bands", "rmse", "max", "de_mean", "light_s", "eye_s"}, {}};
-    for (const auto& s : r.steps)
-        steps.add({fmt(s.step_nm), std::to_string(static_cast<int>(std::lround(300 / s.step_nm)) + 1),
-                   fmt(s.against_1nm.rmse), fmt(s.against_1nm.max), fmt(s.against_1nm.de_mean), fmt(s.light_s),
-                   fmt(s.eye_s)});
+    const Csv steps = csv_table(r.steps);
     write_csv(path("wavelength_step.csv"), steps);
 
-    auto map_csv = [](const std::vector<MapStudyRow>& rows) {
-        Csv c{{"element_size", "elements", "photons", "filter", "deposits_per_element", "error", "noise", "bias",
-               "light_s"},
-              {}};
-        for (const MapStudyRow& x : rows)
-            c.add({fmt(x.element_size), std::to_string(x.elements), std::to_string(x.photons), filter_name(x.filter),
-                   fmt(x.deposits_per_element, 4), fmt(x.e.error, 4), fmt(x.e.noise, 4), fmt(x.e.bias, 4),
-                   fmt(x.light_s, 3)});
-        return c;
-    };
-    const Csv photon_count = map_csv(ms.by_photons), elems = map_csv(ms.by_element);
+    const Csv photon_count = csv_table(ms.by_photons), elems = csv_table(ms.by_element);
     write_csv(path("photon_count.csv"), photon_count);
     write_csv(path("element_size.csv"), elems);
 
-    Csv thr{{"threshold", "taken_fraction", "speedup_time", "speedup_segments", "rmse", "de_mean"}, {}};
-    for (const auto& x : r.thresholds)
-        thr.add({x.label, fmt(x.taken_fraction), fmt(x.speedup_time), fmt(x.speedup_segments), fmt(x.against_full.rmse),
-                 fmt(x.against_full.de_mean)});
-    Csv peak{{"wavelengths", "r_nm", "g_nm", "b_nm", "taken_fraction", "speedup_segments", "rmse", "de_mean"}, {}};
-    for (const auto& x : r.peaks)
-        peak.add({x.label, fmt(x.wavelengths[0], 5), fmt(x.wavelengths[1], 5), fmt(x.wavelengths[2], 5),
-                  fmt(x.taken_fraction), fmt(x.speedup_segments), fmt(x.against_full.rmse), fmt(x.against_full.de_mean)});
+    const Csv thr = csv_table(r.thresholds, {"threshold", "taken_fraction", "speedup_time", "speedup_segments", "rmse", "de_mean"});
+    const Csv peak = csv_table(
+        r.peaks, {"wavelengths", "r_nm", "g_nm", "b_nm", "taken_fraction", "speedup_segments", "rmse", "de_mean"});
     write_csv(path("shortcut_threshold.csv"), thr);
     write_csv(path("shortcut_peaks.csv"), peak);
 
-    Csv lost{{"limits", "max_depth", "threshold", "lost_depth", "lost_limits", "lost_threshold", "lost_total",
-              "worst_pixel", "rmse_vs_deepest", "eye_s"},
-             {}};
-    for (const auto& x : r.lost) {
-        const RenderStats& rs = x.stats;
-        const double n = static_cast<double>(rs.primary_rays);
-        lost.add({x.paper_limits ? "8/8" : "none", std::to_string(x.max_depth), fmt(x.threshold), fmt(rs.lost_depth / n),
-                  fmt(rs.lost_limits / n), fmt(rs.lost_threshold / n),
-                  fmt((rs.lost_depth + rs.lost_limits + rs.lost_threshold) / n), fmt(x.worst_pixel),
-                  fmt(x.rmse_vs_deepest), fmt(rs.seconds)});
-    }
+    const Csv lost = csv_table(r.lost);
     write_csv(path("lost_light.csv"), lost);
 
     auto table = [](const Csv& c) { return c.markdown(4); };

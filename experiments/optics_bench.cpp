@@ -213,6 +213,7 @@ Result compute(const ExperimentOptions& opt) {
     r.prism = prism_study(opt.quick, opt.threads);
     r.slab = slab_study(opt.quick, opt.threads);
     r.seconds = seconds_since(t0);
+    r.drop.far_field_tables = far_field_tables(r.drop.far_field);
     return r;
 }
 

@@ -18,7 +18,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/far_field.h"
+#include "core/fields.h"
 #include "experiments/experiment.h"
+#include "experiments/far_field_output.h"
 
 namespace refract::experiments::optics_bench {
 
@@ -44,6 +46,7 @@ struct DropStudy {
     std::vector<DropClass> classes;
     double dropped = 0;  // by the limits
     FarFieldResult far_field;
+    FarFieldTables far_field_tables;  // far_field's files (drop_far_field/)
     nlohmann::json scene;
     double seconds = 0;
 };
@@ -101,4 +104,112 @@ Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);
 void run(const ExperimentOptions& opt);
 
+// The names of the drop's path classes (van de Hulst p = 0 … 3).
+const char* class_name(int p);
+
 }  // namespace refract::experiments::optics_bench
+
+namespace refract {
+
+template <>
+struct Fields<experiments::optics_bench::DropBin> {
+    static auto list() {
+        using B = experiments::optics_bench::DropBin;
+        return std::make_tuple(field("cls", &B::cls).csv("class"), field("theta0_deg", &B::theta0_deg).digits(6),
+                               field("theta1_deg", &B::theta1_deg).digits(6), field("measured", &B::measured).digits(10),
+                               field("measured_s", &B::measured_s).digits(10), field("measured_p", &B::measured_p).digits(10),
+                               field("closed", &B::closed).digits(10), field("closed_s", &B::closed_s).digits(10),
+                               field("closed_p", &B::closed_p).digits(10));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::DropClass> {
+    static auto list() {
+        using C = experiments::optics_bench::DropClass;
+        return std::make_tuple(
+            field("cls", &C::cls).csv("class"),
+            derived<C>("path", [](const C& c) { return experiments::optics_bench::class_name(c.cls); }).csv_only(),
+            field("total", &C::total).csv("measured").digits(7), field("total_closed", &C::total_closed).csv("closed form").digits(7),
+            derived<C>("difference", [](const C& c) { return c.total - c.total_closed; }).digits(3).csv_only(),
+            field("max_bin_error", &C::max_bin_error).csv("max bin difference").digits(3),
+            field("max_z", &C::max_z).csv("max bin z-score").digits(3));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::DropStudy> {
+    static auto list() {
+        using D = experiments::optics_bench::DropStudy;
+        return std::make_tuple(field("n", &D::n), field("photons", &D::photons), field("bins", &D::bins),
+                               field("classes", &D::classes), field("dropped", &D::dropped), field("seconds", &D::seconds));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::RainbowRow> {
+    static auto list() {
+        using R = experiments::optics_bench::RainbowRow;
+        return std::make_tuple(
+            field("wavelength_nm", &R::wavelength_nm).digits(6), field("n", &R::n).digits(8),
+            field("primary", &R::primary).csv("primary_deg").digits(8),
+            field("primary_closed", &R::primary_closed).csv("primary_closed_deg").digits(8),
+            derived<R>("primary_difference", [](const R& r) { return r.primary - r.primary_closed; }).digits(3).csv_only(),
+            field("secondary", &R::secondary).csv("secondary_deg").digits(8),
+            field("secondary_closed", &R::secondary_closed).csv("secondary_closed_deg").digits(8),
+            derived<R>("secondary_difference", [](const R& r) { return r.secondary - r.secondary_closed; }).digits(3).csv_only());
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::RainbowStudy> {
+    static auto list() {
+        using S = experiments::optics_bench::RainbowStudy;
+        return std::make_tuple(field("bin_deg", &S::bin_deg), field("photons", &S::photons), field("rows", &S::rows),
+                               field("max_error", &S::max_error), field("seconds", &S::seconds));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::PrismRow> {
+    static auto list() {
+        using R = experiments::optics_bench::PrismRow;
+        return std::make_tuple(
+            field("wavelength_nm", &R::wavelength_nm).digits(6), field("n", &R::n).digits(8),
+            field("deviation", &R::deviation).csv("deviation_deg").digits(8),
+            field("deviation_closed", &R::deviation_closed).csv("closed_deg").digits(8),
+            derived<R>("difference_deg", [](const R& r) { return r.deviation - r.deviation_closed; }).digits(3).csv_only());
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::PrismStudy> {
+    static auto list() {
+        using S = experiments::optics_bench::PrismStudy;
+        return std::make_tuple(field("apex_deg", &S::apex_deg), field("incidence_deg", &S::incidence_deg),
+                               field("bin_deg", &S::bin_deg), field("rows", &S::rows), field("max_error", &S::max_error),
+                               field("seconds", &S::seconds));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::SlabRow> {
+    static auto list() {
+        using R = experiments::optics_bench::SlabRow;
+        return std::make_tuple(field("incidence_deg", &R::incidence_deg).digits(6), field("T_s", &R::T_s).digits(12),
+                               field("T_p", &R::T_p).digits(12), field("T", &R::T).digits(12),
+                               field("T_s_closed", &R::T_s_closed).digits(12), field("T_p_closed", &R::T_p_closed).digits(12),
+                               field("T_closed", &R::T_closed).digits(12));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::SlabStudy> {
+    static auto list() {
+        using S = experiments::optics_bench::SlabStudy;
+        return std::make_tuple(field("n", &S::n), field("rows", &S::rows), field("max_error", &S::max_error),
+                               field("seconds", &S::seconds));
+    }
+};
+template <>
+struct Fields<experiments::optics_bench::Result> {
+    static auto list() {
+        using R = experiments::optics_bench::Result;
+        return std::make_tuple(field("quick", &R::quick), field("seconds", &R::seconds), field("drop", &R::drop),
+                               field("rainbow", &R::rainbow), field("prism", &R::prism), field("slab", &R::slab));
+    }
+};
+
+}  // namespace refract

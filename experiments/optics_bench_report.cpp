@@ -6,20 +6,21 @@
 
 #include "experiments/common.h"
 #include "experiments/far_field_output.h"
+#include "experiments/field_csv.h"
 #include "experiments/optics_bench.h"
 #include "experiments/plot.h"
 
 namespace refract::experiments::optics_bench {
-
-namespace {
-
-std::string g(double v, int digits = 6) { return fmt(v, digits); }
 
 const char* class_name(int p) {
     static const char* names[] = {"external reflection", "direct transmission", "1 internal reflection (primary bow)",
                                   "2 internal reflections (secondary bow)"};
     return names[p];
 }
+
+namespace {
+
+std::string g(double v, int digits = 6) { return fmt(v, digits); }
 
 void figures(const std::string& dir) {
     if (!gnuplot_available()) return;
@@ -62,42 +63,21 @@ void write(const Result& r, const std::string& dir) {
     ensure_dir(dir);
     const auto path = [&](const std::string& f) { return dir + "/" + f; };
     // 1. Drop.
-    Csv drop;
-    drop.header = {"class", "theta0_deg", "theta1_deg", "measured", "measured_s", "measured_p", "closed", "closed_s", "closed_p"};
-    for (const DropBin& b : r.drop.bins)
-        drop.add({std::to_string(b.cls), g(b.theta0_deg), g(b.theta1_deg), g(b.measured, 10), g(b.measured_s, 10),
-                  g(b.measured_p, 10), g(b.closed, 10), g(b.closed_s, 10), g(b.closed_p, 10)});
-    write_csv(path("drop.csv"), drop);
-    Csv drop_classes;
-    drop_classes.header = {"class", "path", "measured", "closed form", "difference", "max bin difference", "max bin z-score"};
-    for (const DropClass& c : r.drop.classes)
-        drop_classes.add({std::to_string(c.cls), class_name(c.cls), g(c.total, 7), g(c.total_closed, 7),
-                          g(c.total - c.total_closed, 3), g(c.max_bin_error, 3), g(c.max_z, 3)});
+    write_csv(path("drop.csv"), csv_table(r.drop.bins));
+    const Csv drop_classes = csv_table(r.drop.classes);
     write_csv(path("drop_classes.csv"), drop_classes);
-    write_far_field(dir + "/drop_far_field", r.drop.far_field, "water drop in a beam, 550 nm");
+    write_far_field(dir + "/drop_far_field", r.drop.far_field_tables, "water drop in a beam, 550 nm");
     write_text_atomic(path("drop.json"), r.drop.scene.dump(2) + "\n");
     // 2. Rainbow.
-    Csv bow;
-    bow.header = {"wavelength_nm", "n", "primary_deg", "primary_closed_deg", "primary_difference", "secondary_deg",
-                  "secondary_closed_deg", "secondary_difference"};
-    for (const RainbowRow& x : r.rainbow.rows)
-        bow.add({g(x.wavelength_nm), g(x.n, 8), g(x.primary, 8), g(x.primary_closed, 8), g(x.primary - x.primary_closed, 3),
-                 g(x.secondary, 8), g(x.secondary_closed, 8), g(x.secondary - x.secondary_closed, 3)});
+    const Csv bow = csv_table(r.rainbow.rows);
     write_csv(path("rainbow.csv"), bow);
     write_text_atomic(path("rainbow.json"), r.rainbow.scene.dump(2) + "\n");
     // 3. Prism.
-    Csv prism;
-    prism.header = {"wavelength_nm", "n", "deviation_deg", "closed_deg", "difference_deg"};
-    for (const PrismRow& x : r.prism.rows)
-        prism.add({g(x.wavelength_nm), g(x.n, 8), g(x.deviation, 8), g(x.deviation_closed, 8), g(x.deviation - x.deviation_closed, 3)});
+    const Csv prism = csv_table(r.prism.rows);
     write_csv(path("prism.csv"), prism);
     write_text_atomic(path("prism.json"), r.prism.scene.dump(2) + "\n");
     // 4. Slab.
-    Csv slab;
-    slab.header = {"incidence_deg", "T_s", "T_p", "T", "T_s_closed", "T_p_closed", "T_closed"};
-    for (const SlabRow& x : r.slab.rows)
-        slab.add({g(x.incidence_deg), g(x.T_s, 12), g(x.T_p, 12), g(x.T, 12), g(x.T_s_closed, 12), g(x.T_p_closed, 12),
-                  g(x.T_closed, 12)});
+    const Csv slab = csv_table(r.slab.rows);
     write_csv(path("slab.csv"), slab);
     figures(dir);
 

@@ -170,6 +170,17 @@ void compare(Comparison& c, const std::string& object, int threads,
     for (size_t d = 0; d < std::max(dn.size(), de.size()); ++d)
         c.depth.push_back({static_cast<int>(d), d < dn.size() ? dn[d] : 0.0, d < de.size() ? de[d] : 0.0});
     c.seconds_depth = seconds_since(t0);
+    c.depth_natural = c.depth_exact = 0;
+    for (const auto& d : c.depth) c.depth_natural += d.natural, c.depth_exact += d.exact;
+    c.difference_x10 = Image(c.width, c.height);
+    for (size_t k = 0; k < c.natural.rgb.size(); ++k)
+        c.difference_x10.rgb[k] = std::fmin(std::abs(c.natural.rgb[k] - c.exact.rgb[k]) * 10.0, 1.0);
+}
+
+// The value v in [0, 1] stored so that the sRGB-encoded PNG's grey level is v.
+double srgb_decode(double v) {
+    v = std::fmin(std::fmax(v, 0.0), 1.0);
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
 json with_polarisation(json j, const json& pol, const std::string& note) {
@@ -300,8 +311,30 @@ Result compute(const ExperimentOptions& opt) {
         }
     }
     an.seconds = seconds_since(t0);
+    {
+        const PolarisationImages& pol = r.diamond.exact_polarisation;
+        an.dolp_grey = Image(an.width, an.height);
+        for (size_t p = 0; p < pol.dolp.size(); ++p) {
+            const double v = srgb_decode(pol.dolp[p]);
+            an.dolp_grey.rgb[3 * p] = an.dolp_grey.rgb[3 * p + 1] = an.dolp_grey.rgb[3 * p + 2] = v;
+        }
+    }
     r.seconds_total = seconds_since(t_all);
+    r.findings = judge(r);
     return r;
+}
+
+Findings judge(const Result& r) {
+    Findings f;
+    auto match = [](const Comparison& c) {
+        auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::fmax(std::abs(a), std::abs(b)); };
+        return !c.spectral && close(c.depth_natural, c.light_natural) && close(c.depth_exact, c.light_exact);
+    };
+    f.diamond_depth_sums_match = match(r.diamond);
+    f.glass_depth_sums_match = match(r.glass);
+    f.clipping_deviates = r.analyser.deviating_channels > 0;
+    f.outside_cone = r.analyser.dolp_above_one > 0 || r.analyser.channels_outside_cone > 0;
+    return f;
 }
 
 }  // namespace refract::experiments::polarisation

@@ -13,11 +13,13 @@
 // polarisation_report.cpp.
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/fields.h"
 #include "core/image.h"
 #include "core/polarisation.h"
 #include "core/render.h"
@@ -103,9 +105,11 @@ struct Comparison {
     int object_pixels = 0;                      // pixels whose primary ray first hits the object
     double object_natural = 0, object_exact = 0;
     std::vector<DepthRow> depth;                // the non-spectral walk, every pixel centre
+    double depth_natural = 0, depth_exact = 0;  // `depth` summed
     double seconds_natural = 0, seconds_exact = 0;        // light + eye pass
     double light_pass_natural = 0, light_pass_exact = 0;  // light pass alone (0: none)
     double seconds_depth = 0;
+    Image difference_x10;  // |natural − exact| × 10, clipped at 1
 };
 
 // Sums, over every pixel centre of `scene`, the light reaching the camera per depth of
@@ -135,10 +139,19 @@ struct AnalyserStudy {
     // outside the cone S1² + S2² + S3² <= S0²: cie-rgb channels are sums over wavelengths
     // with weights of both signs (r̄'s negative lobe), and S0 is clipped at 0 at the end.
     int dolp_above_one = 0, channels_outside_cone = 0;
+    Image dolp_grey;  // the diamond's DoLP as grey levels (sRGB-encoded grey = DoLP, clamped to 0-1)
     double seconds = 0;
 };
 
 // ---- Everything ----------------------------------------------------------------------
+
+// What the summary states beside its tables, each from the numbers (`judge`).
+struct Findings {
+    // A scene rendered without the spectral pass: the sums over depth equal the renders' ΣS0 (to 1e-9).
+    bool diamond_depth_sums_match = false, glass_depth_sums_match = false;
+    bool clipping_deviates = false;       // pixel channels break I(0) + I(90) = S0 (the cie-rgb clipping)
+    bool outside_cone = false;            // DoLP above 1 or Stokes vectors outside the cone
+};
 
 struct Result {
     bool quick = false;
@@ -147,14 +160,144 @@ struct Result {
     Comparison diamond, glass;
     AnalyserStudy analyser;
     double seconds_sphere = 0, seconds_total = 0;
+    Findings findings;  // judge(*this), set by compute
 };
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);
 void run(const ExperimentOptions& opt);  // compute, then write into opt.out_dir
 
+// The findings from a Result's numbers (pure; compute stores them in Result::findings) and
+// the summary's sentences that state them, worded by r.findings.
+Findings judge(const Result& r);
+std::string depth_sums_text(const Result& r, const Comparison& c);  // a non-spectral scene: the walk is the render
+std::string clipping_text(const Result& r);                         // the analyser's sums and the clipping
+std::string cone_text(const Result& r);                             // DoLP above 1, Stokes vectors outside the cone
+
 // Scenes (saved beside the results).
 nlohmann::json sphere_dop_scene(double n);
 nlohmann::json glass_sphere_scene(bool quick);
 
 }  // namespace refract::experiments::polarisation
+
+namespace refract {
+
+template <>
+struct Fields<experiments::polarisation::SpherePoint> {
+    static auto list() {
+        using P = experiments::polarisation::SpherePoint;
+        namespace pol = experiments::polarisation;
+        return std::make_tuple(
+            field("n", &P::n), field("theta_deg", &P::theta_deg), field("class_id", &P::cls).csv_only(),
+            derived<P>("path", [](const P& p) { return pol::path_classes()[static_cast<size_t>(p.cls)].name; }).csv("class"),
+            field("stokes", &P::S).python_only(), derived<P>("S0", [](const P& p) { return p.S(0); }).csv_only(),
+            derived<P>("S1", [](const P& p) { return p.S(1); }).csv_only(),
+            derived<P>("S2", [](const P& p) { return p.S(2); }).csv_only(),
+            derived<P>("S3", [](const P& p) { return p.S(3); }).csv_only(), field("dop", &P::dop),
+            field("dop_closed", &P::dop_closed),
+            derived<P>("dop_error", [](const P& p) { return p.dop - p.dop_closed; }).csv_only(),
+            field("s1", &P::s1).csv("s1_over_s0"), field("s1_closed", &P::s1_closed));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::SphereClassError> {
+    static auto list() {
+        using E = experiments::polarisation::SphereClassError;
+        namespace pol = experiments::polarisation;
+        return std::make_tuple(
+            field("n", &E::n),
+            derived<E>("path", [](const E& e) { return pol::path_classes()[static_cast<size_t>(e.cls)].name; }).csv("class"),
+            derived<E>("reflections", [](const E& e) { return pol::path_classes()[static_cast<size_t>(e.cls)].reflections; })
+                .csv_only(),
+            derived<E>("transmissions",
+                       [](const E& e) { return pol::path_classes()[static_cast<size_t>(e.cls)].transmissions; })
+                .csv_only(),
+            field("points", &E::points), field("max_dop_error", &E::max_dop_error).digits(3),
+            field("max_signed_error", &E::max_signed_error).digits(3),
+            field("max_s23", &E::max_s23).csv("max_off_plane").digits(3));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::RainbowRay> {
+    static auto list() {
+        using R = experiments::polarisation::RainbowRay;
+        return std::make_tuple(field("n", &R::n), field("theta_deg", &R::theta_deg).csv("theta_i_deg").digits(6),
+                               field("deviation_deg", &R::deviation_deg).digits(6), field("dop", &R::dop),
+                               field("dop_closed", &R::dop_closed));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::SphereStudy> {
+    static auto list() {
+        using S = experiments::polarisation::SphereStudy;
+        return std::make_tuple(field("points", &S::points), field("errors", &S::errors), field("rainbows", &S::rainbows),
+                               field("max_dop_error", &S::max_dop_error));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::DepthRow> {
+    static auto list() {
+        using D = experiments::polarisation::DepthRow;
+        return std::make_tuple(
+            field("depth", &D::depth), field("natural", &D::natural).digits(8), field("exact", &D::exact).digits(8),
+            derived<D>("difference", [](const D& d) { return d.exact - d.natural; }).digits(4).csv_only(),
+            derived<D>("relative_difference",
+                       [](const D& d) {
+                           return d.natural > 0 ? std::optional<double>((d.exact - d.natural) / d.natural) : std::nullopt;
+                       })
+                .digits(4)
+                .csv_only());
+    }
+};
+template <>
+struct Fields<experiments::polarisation::Comparison> {
+    static auto list() {
+        using C = experiments::polarisation::Comparison;
+        return std::make_tuple(
+            field("id", &C::id).csv("scene").csv_only(), field("title", &C::title).python_only(),
+            field("natural", &C::natural).python_only(), field("exact", &C::exact).python_only(),
+            derived<C>("dolp", [](const C& c) { return ArrayRef{&c.exact_polarisation.dolp, {c.height, c.width}}; })
+                .python_only(),
+            field("width", &C::width), field("height", &C::height), field("rmse", &C::rmse).digits(4),
+            field("max_abs", &C::max_abs).digits(4), field("delta_e_mean", &C::de_mean).csv("de2000_mean").digits(4),
+            field("delta_e_p95", &C::de_p95).csv("de2000_p95").digits(4),
+            field("delta_e_max", &C::de_max).csv("de2000_max").digits(4),
+            field("light_natural", &C::light_natural).digits(6), field("light_exact", &C::light_exact).digits(6),
+            derived<C>("light_ratio", [](const C& c) { return c.light_exact / c.light_natural; }).digits(6).csv_only(),
+            field("object_pixels", &C::object_pixels), field("object_natural", &C::object_natural).digits(6),
+            field("object_exact", &C::object_exact).digits(6),
+            derived<C>("object_ratio", [](const C& c) { return c.object_exact / c.object_natural; }).digits(6).csv_only(),
+            field("depth", &C::depth).python_only(), field("seconds_natural", &C::seconds_natural).digits(3),
+            field("seconds_exact", &C::seconds_exact).digits(3));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::AnalyserStudy> {
+    static auto list() {
+        using A = experiments::polarisation::AnalyserStudy;
+        return std::make_tuple(field("angles", &A::angles), field("images", &A::images), field("light", &A::light),
+                               field("max_dev_0_90", &A::max_dev_0_90), field("max_dev_45_135", &A::max_dev_45_135),
+                               field("dolp_mean_object", &A::dolp_mean_object),
+                               field("dolp_max_object", &A::dolp_max_object));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::Findings> {
+    static auto list() {
+        using F = experiments::polarisation::Findings;
+        return std::make_tuple(field("diamond_depth_sums_match", &F::diamond_depth_sums_match),
+                               field("glass_depth_sums_match", &F::glass_depth_sums_match),
+                               field("clipping_deviates", &F::clipping_deviates), field("outside_cone", &F::outside_cone));
+    }
+};
+template <>
+struct Fields<experiments::polarisation::Result> {
+    static auto list() {
+        using R = experiments::polarisation::Result;
+        return std::make_tuple(field("quick", &R::quick), field("sphere", &R::sphere), field("diamond", &R::diamond),
+                               field("glass", &R::glass), field("analyser", &R::analyser),
+                               field("seconds", &R::seconds_total), field("findings", &R::findings));
+    }
+};
+
+}  // namespace refract

@@ -7,6 +7,7 @@
 
 #include "core/polarisation_output.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/plot.h"
 #include "experiments/polarisation.h"
 
@@ -21,18 +22,6 @@ std::string angle_id(double a) {
     char b[8];
     std::snprintf(b, sizeof b, "%03d", static_cast<int>(std::lround(a)));
     return b;
-}
-
-// The value v in [0, 1] stored so that the sRGB-encoded PNG's grey level is v.
-double srgb_decode(double v) {
-    v = std::fmin(std::fmax(v, 0.0), 1.0);
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-
-Image difference_image(const Image& a, const Image& b, double gain) {
-    Image d(a.width, a.height);
-    for (size_t k = 0; k < a.rgb.size(); ++k) d.rgb[k] = std::fmin(std::abs(a.rgb[k] - b.rgb[k]) * gain, 1.0);
-    return d;
 }
 
 // A map of per-pixel values as raw native float32, row 0 at the top (for gnuplot).
@@ -63,6 +52,49 @@ void map_figure(const std::string& dir, const std::string& name, const std::stri
 
 }  // namespace
 
+std::string depth_sums_text(const Result& r, const Comparison& c) {
+    if (c.spectral) return "";
+    const bool match = &c == &r.diamond ? r.findings.diamond_depth_sums_match : r.findings.glass_depth_sums_match;
+    std::ostringstream s;
+    if (match) s << "The " << c.title << " is rendered by this same walk: the sums over depth against the renders' ΣS0: ";
+    else
+        s << "The " << c.title << " is rendered by the same walk, yet the sums over depth differ from the renders' "
+          << "ΣS0 (beyond 1e-9): ";
+    s << "natural " << fmt(c.depth_natural, 10) << " / " << fmt(c.light_natural, 10) << ", exact "
+      << fmt(c.depth_exact, 10) << " / " << fmt(c.light_exact, 10) << ".\n\n";
+    return s.str();
+}
+
+std::string clipping_text(const Result& r) {
+    const AnalyserStudy& an = r.analyser;
+    std::ostringstream s;
+    if (r.findings.clipping_deviates)
+        s << "The cie-rgb pipeline (the 1998 paper's) clips negative channel sums to 0 at the end, which breaks "
+             "the sums where it acts: "
+          << an.deviating_channels << " pixel channels deviate by more than 1e-9, "
+          << (an.deviations_at_zeros ? "every one of them" : "not all of them") << " 0 in one of the five images (";
+    else
+        s << "The cie-rgb pipeline (the 1998 paper's) clips negative channel sums to 0 at the end, which could break "
+             "the sums where it acts; no pixel channel deviates by more than 1e-9 (";
+    s << an.zero_channels << " channels are 0 somewhere, clipped or dark).";
+    return s.str();
+}
+
+std::string cone_text(const Result& r) {
+    const AnalyserStudy& an = r.analyser;
+    std::ostringstream s;
+    if (r.findings.outside_cone)
+        s << "The same cause: a cie-rgb channel is a sum over wavelengths with weights of both signs (r̄'s negative "
+             "lobe) and its S0 is clipped at 0 at the end, so its (S0, S1, S2, S3) need not be a physical Stokes "
+             "vector; "
+          << an.channels_outside_cone << " pixel channels of the image have √(S1² + S2² + S3²) > S0.";
+    else
+        s << "Although a cie-rgb channel is a sum over wavelengths with weights of both signs (r̄'s negative lobe), "
+             "clipped at 0 at the end, every pixel channel's (S0, S1, S2, S3) lies in the cone √(S1² + S2² + S3²) "
+             "<= S0 here.";
+    return s.str();
+}
+
 void write(const Result& r, const std::string& dir) {
     ensure_dir(dir);
     auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
@@ -79,31 +111,18 @@ void write(const Result& r, const std::string& dir) {
     // ---- 1. Sphere ------------------------------------------------------------------------
     const SphereStudy& sp = r.sphere;
     for (const auto& [n, j] : sp.scenes) save_json(scenes, "sphere-dop-n" + fmt(n) + ".json", j);
-    Csv pts{{"n", "theta_deg", "class_id", "class", "S0", "S1", "S2", "S3", "dop", "dop_closed", "dop_error",
-             "s1_over_s0", "s1_closed"},
-            {}};
+    Csv pts{csv_header<SpherePoint>(), {}};
     // Grouped by index and class (gnuplot draws each group as one line), by angle within.
     for (double n : sp.indices)
         for (size_t c = 0; c < classes.size(); ++c)
             for (const auto& p : sp.points) {
                 if (p.n != n || p.cls != static_cast<int>(c)) continue;
-                pts.add({fmt(p.n), fmt(p.theta_deg), std::to_string(p.cls), classes[p.cls].name, fmt(p.S(0)),
-                         fmt(p.S(1)), fmt(p.S(2)), fmt(p.S(3)), fmt(p.dop), fmt(p.dop_closed),
-                         fmt(p.dop - p.dop_closed), fmt(p.s1), fmt(p.s1_closed)});
+                pts.add(csv_cells(p));
             }
     write_csv(path("sphere_dop.csv"), pts);
-    Csv errs{{"n", "class", "reflections", "transmissions", "points", "max_dop_error", "max_signed_error",
-              "max_off_plane"},
-             {}};
-    for (const auto& e : sp.errors)
-        errs.add({fmt(e.n), classes[e.cls].name, std::to_string(classes[e.cls].reflections),
-                  std::to_string(classes[e.cls].transmissions), std::to_string(e.points), fmt(e.max_dop_error, 3),
-                  fmt(e.max_signed_error, 3), fmt(e.max_s23, 3)});
+    const Csv errs = csv_table(sp.errors);
     write_csv(path("sphere_dop_errors.csv"), errs);
-    Csv rain{{"n", "theta_i_deg", "deviation_deg", "dop", "dop_closed"}, {}};
-    for (const auto& b : sp.rainbows)
-        rain.add({fmt(b.n), fmt(b.theta_deg, 6), fmt(b.deviation_deg, 6), fmt(b.dop), fmt(b.dop_closed)});
-    write_csv(path("sphere_rainbow.csv"), rain);
+    write_csv(path("sphere_rainbow.csv"), csv_table(sp.rainbows));
     md << "## 1. A sphere's paths: degree of polarisation against the closed forms\n\n"
        << "Parallel rays along +z hit a unit sphere at impact parameters b = sin θi, θi = "
        << fmt(sp.angles_deg.front()) << "…" << fmt(sp.angles_deg.back()) << "° (" << sp.angles_deg.size()
@@ -150,26 +169,17 @@ void write(const Result& r, const std::string& dir) {
     }
 
     // ---- 2. Natural against exact -------------------------------------------------------------
-    Csv cmp{{"scene", "width", "height", "rmse", "max_abs", "de2000_mean", "de2000_p95", "de2000_max",
-             "light_natural", "light_exact", "light_ratio", "object_pixels", "object_natural", "object_exact",
-             "object_ratio", "seconds_natural", "seconds_exact"},
-            {}};
-    Csv depth{{"scene", "depth", "natural", "exact", "difference", "relative_difference"}, {}};
+    Csv cmp{csv_header<Comparison>(), {}};
+    Csv depth{csv_join({"scene"}, csv_header<DepthRow>()), {}};
     for (const Comparison* c : {&r.diamond, &r.glass}) {
         save_json(scenes, c->id + "-natural.json", c->natural_scene);
         save_json(scenes, c->id + "-exact.json", c->exact_scene);
         write_image(path(c->id + "-natural.png"), c->natural);
         write_image(path(c->id + "-exact.png"), c->exact);
-        write_image(path(c->id + "-difference-x10.png"), difference_image(c->natural, c->exact, 10.0));
+        write_image(path(c->id + "-difference-x10.png"), c->difference_x10);
         write_f32(path("de2000_" + c->id + ".f32"), c->delta_e);
-        cmp.add({c->id, std::to_string(c->width), std::to_string(c->height), fmt(c->rmse, 4), fmt(c->max_abs, 4),
-                 fmt(c->de_mean, 4), fmt(c->de_p95, 4), fmt(c->de_max, 4), fmt(c->light_natural, 6),
-                 fmt(c->light_exact, 6), fmt(c->light_exact / c->light_natural, 6), std::to_string(c->object_pixels),
-                 fmt(c->object_natural, 6), fmt(c->object_exact, 6), fmt(c->object_exact / c->object_natural, 6),
-                 fmt(c->seconds_natural, 3), fmt(c->seconds_exact, 3)});
-        for (const auto& d : c->depth)
-            depth.add({c->id, std::to_string(d.depth), fmt(d.natural, 8), fmt(d.exact, 8), fmt(d.exact - d.natural, 4),
-                       d.natural > 0 ? fmt((d.exact - d.natural) / d.natural, 4) : ""});
+        cmp.add(csv_cells(*c));
+        for (const auto& d : c->depth) depth.add(csv_join({c->id}, csv_cells(d)));
         if (plots)
             map_figure(dir, "de2000_" + c->id, "de2000_" + c->id + ".f32", c->width, c->height,
                        "CIEDE2000, natural light against exact polarisation: " + c->title +
@@ -213,12 +223,10 @@ void write(const Result& r, const std::string& dir) {
           "and its 8/8 limits) and direct lighting of the floor, without the light pass's caustics: it "
           "apportions the difference, while the totals of section 2 come from the renders.\n\n";
     for (const Comparison* c : {&r.diamond, &r.glass}) {
-        double tn = 0, te = 0;
+        const double tn = c->depth_natural, te = c->depth_exact;
         md << "**" << c->title << "**\n\n| depth | natural | exact | difference | relative difference |\n"
            << "|---|---|---|---|---|\n";
         for (const auto& d : c->depth) {
-            tn += d.natural;
-            te += d.exact;
             if (d.natural == 0 && d.exact == 0) continue;
             md << "| " << d.depth << " | " << fmt(d.natural, 6) << " | " << fmt(d.exact, 6) << " | "
                << fmt(d.exact - d.natural, 4) << " | "
@@ -226,10 +234,7 @@ void write(const Result& r, const std::string& dir) {
         }
         md << "| all | " << fmt(tn, 6) << " | " << fmt(te, 6) << " | " << fmt(te - tn, 4) << " | "
            << fmt((te - tn) / tn, 4) << " |\n\n";
-        if (!c->spectral)
-            md << "The " << c->title << " is rendered by this same walk: the sums over depth against the renders' "
-               << "ΣS0: natural " << fmt(tn, 10) << " / " << fmt(c->light_natural, 10) << ", exact " << fmt(te, 10)
-               << " / " << fmt(c->light_exact, 10) << ".\n\n";
+        md << depth_sums_text(r, *c);
     }
     if (plots) {
         std::ostringstream g;
@@ -263,14 +268,7 @@ void write(const Result& r, const std::string& dir) {
     const AnalyserStudy& an = r.analyser;
     const PolarisationImages& pol = r.diamond.exact_polarisation;
     write_polarisation(path("diamond-exact.png"), an.width, an.height, pol);
-    {
-        Image grey(an.width, an.height);
-        for (size_t p = 0; p < pol.dolp.size(); ++p) {
-            const double v = srgb_decode(pol.dolp[p]);
-            grey.rgb[3 * p] = grey.rgb[3 * p + 1] = grey.rgb[3 * p + 2] = v;
-        }
-        write_image(path("diamond-dolp.png"), grey);
-    }
+    write_image(path("diamond-dolp.png"), an.dolp_grey);
     write_f32(path("dolp_diamond.f32"), pol.dolp);
     Csv ana{{"analyser_deg", "light", "light_over_unanalysed"}, {}};
     std::vector<Panel> panels{{"diamond-exact.png", "exact, no analyser (S0)"},
@@ -295,16 +293,10 @@ void write(const Result& r, const std::string& dir) {
        << "**, max |I(45) + I(135) − S0| = **" << fmt(an.max_dev_45_135, 3) << "**";
     md << ". Over the " << 3 * an.width * an.height - an.zero_channels << " pixel channels that are not 0 in any "
        << "of the five images: " << fmt(an.max_dev_0_90_nonzero, 3) << " and " << fmt(an.max_dev_45_135_nonzero, 3)
-       << ". The cie-rgb pipeline (the 1998 paper's) clips negative channel sums to 0 at the end, which breaks "
-          "the sums where it acts: " << an.deviating_channels << " pixel channels deviate by more than 1e-9, "
-       << (an.deviations_at_zeros ? "every one of them" : "not all of them")
-       << " 0 in one of the five images (" << an.zero_channels << " channels are 0 somewhere, clipped or dark)";
-    md << ".\n\nDegree of linear polarisation over the gem's " << r.diamond.object_pixels << " pixels: mean "
-       << f3(an.dolp_mean_object) << ", max " << f3(an.dolp_max_object) << "; " << an.dolp_above_one
-       << " of them above 1. The same cause: a cie-rgb channel is a sum over wavelengths with weights of both "
-          "signs (r̄'s negative lobe) and its S0 is clipped at 0 at the end, so its (S0, S1, S2, S3) need not be "
-          "a physical Stokes vector; " << an.channels_outside_cone << " pixel channels of the image have "
-          "√(S1² + S2² + S3²) > S0. `diamond-dolp.png`: grey level = DoLP; `diamond-exact.stokes.exr`, `.dolp.exr`, `.aolp.exr`: the "
+       << ". " << clipping_text(r) << "\n\nDegree of linear polarisation over the gem's " << r.diamond.object_pixels
+       << " pixels: mean " << f3(an.dolp_mean_object) << ", max " << f3(an.dolp_max_object) << "; " << an.dolp_above_one
+       << " of them above 1. " << cone_text(r)
+       << " `diamond-dolp.png`: grey level = DoLP; `diamond-exact.stokes.exr`, `.dolp.exr`, `.aolp.exr`: the "
           "Stokes vectors per channel, DoLP and AoLP (docs/polarisation.md).\n\n";
     if (plots) {
         image_grid_figure(dir, "analyser", 2, 3, panels, "1998 diamond, exact polarisation, through a linear analyser",

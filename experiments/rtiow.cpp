@@ -11,6 +11,7 @@
 #include "core/ray_tree.h"
 #include "core/tracer.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/plot.h"
 
 namespace refract::experiments::rtiow {
@@ -195,7 +196,66 @@ Result compute(const ExperimentOptions& opt) {
     std::vector<double> xs, ys;
     for (const auto& row : cv.rows) xs.push_back(row.spp), ys.push_back(row.rmse);
     cv.fit = loglog_fit(xs, ys);
+    res.findings = judge(res);
     return res;
+}
+
+Findings judge(const Result& r) {
+    Findings f;
+    bool solid = false;  // a stage with the solid sphere was run
+    f.solid_without_tir = true;
+    for (const auto& s : r.stages) {
+        if (s.stage.id == "fig1_29_hollow") f.hollow_with_tir = s.tir_nodes > 0;
+        else solid = true, f.solid_without_tir = f.solid_without_tir && s.tir_nodes == 0;
+    }
+    f.solid_without_tir = f.solid_without_tir && solid;
+    f.schlick_one_at_tir = !r.schlick.empty();
+    for (const auto& c : r.schlick)
+        for (const auto& row : c.rows)
+            if (row.fresnel == 1 && row.schlick != 1) f.schlick_one_at_tir = false;
+    f.slope_one_half = !r.convergence.rows.empty() && std::abs(r.convergence.fit.slope + 0.5) <= 0.1;
+    return f;
+}
+
+std::string tir_text(const Result& r) {
+    std::string s =
+        "**Always refract.** refract's dielectric always handles total internal reflection, so listing 1.51 "
+        "(refract even when Snell's law has no solution; it yields NaN directions there) cannot be written "
+        "as a material. ";
+    if (r.findings.solid_without_tir)
+        s += "It does not need to be: a ray that enters a solid sphere meets the far side at its "
+             "own refraction angle, below the critical angle, so TIR never occurs and listings 1.51 and 1.54 give "
+             "the same image. Both stages use a dielectric with constant reflectance 0 (refract whenever "
+             "possible), and Fig. 1.28 is Fig. 1.27. ";
+    else
+        s += "A ray that enters a solid sphere meets the far side at its own refraction angle, below the critical "
+             "angle, yet the pixel-centre trees of the solid sphere's stages below meet TIR, where listings 1.51 and "
+             "1.54 differ: Fig. 1.28 (here the render of Fig. 1.27's scene, a dielectric with constant reflectance 0) "
+             "is not what listing 1.51 would show there. ";
+    return s + "Dielectric nodes with TIR met by the pixel-centre ray trees:";
+}
+
+std::string hollow_text(const Result& r) {
+    if (r.findings.hollow_with_tir)
+        return "The hollow sphere is where TIR occurs: rays inside the thin shell meet its surfaces beyond the "
+               "critical angle and run along it, which lightens the rim; through the middle the world is seen "
+               "upright and barely shifted, like a soap bubble, as in the book's Fig. 1.29.";
+    return "The hollow sphere's pixel-centre trees meet no TIR either (the thin shell's rim would be where rays "
+           "meet its surfaces beyond the critical angle).";
+}
+
+std::string schlick_text(const Result& r) {
+    return r.findings.schlick_one_at_tir
+               ? "Beyond the critical angle both are 1 (the tracer folds TIR in). "
+               : "Beyond the critical angle the exact Fresnel is 1, but Schlick is not 1 in every row there. ";
+}
+
+std::string convergence_text(const Result& r) {
+    std::string s = "Least-squares slope of log RMSE against log spp: **" + fmt(r.convergence.fit.slope, 4) + "** (1/√spp is −0.5)";
+    if (r.findings.slope_one_half)
+        return s + ": the one-branch choice is an unbiased estimator of the tree, its error falls like 1/√spp.";
+    return s + ": the error does not fall like 1/√spp here (more than 0.1 from −0.5), so this run does not show the "
+               "one-branch choice converging to the tree as an unbiased estimator would.";
 }
 
 void write(const Result& res, const std::string& dir) {
@@ -236,32 +296,21 @@ void write(const Result& res, const std::string& dir) {
               "follows POV-Ray (right = sky × direction), which for that view puts −x on the right and would show "
               "the scene mirrored. The scene files therefore negate every z coordinate and look down +z: a "
               "reflection of both world and camera, so the image is exactly the book's, glass sphere on the left.\n\n"
-           << "**Always refract.** refract's dielectric always handles total internal reflection, so listing 1.51 "
-              "(refract even when Snell's law has no solution; it yields NaN directions there) cannot be written "
-              "as a material. It does not need to be: a ray that enters a solid sphere meets the far side at its "
-              "own refraction angle, below the critical angle, so TIR never occurs and listings 1.51 and 1.54 give "
-              "the same image. Both stages use a dielectric with constant reflectance 0 (refract whenever "
-              "possible), and Fig. 1.28 is Fig. 1.27. Dielectric nodes with TIR met by the pixel-centre ray trees:\n\n"
+           << tir_text(res) << "\n\n"
            << "| stage | TIR nodes |\n|---|---|\n"
-           << tirs.str()
-           << "\nThe hollow sphere is where TIR occurs: rays inside the thin shell meet its surfaces beyond the "
-              "critical angle and run along it, which lightens the rim; through the middle the world is seen "
-              "upright and barely shifted, like a soap bubble, as in the book's Fig. 1.29.\n\n"
-              "![stages](stages.png)\n\n";
+           << tirs.str() << "\n" << hollow_text(res) << "\n\n![stages](stages.png)\n\n";
     }
 
     // ---- Schlick against exact Fresnel.
     {
-        Csv t{{"case", "eta", "angle_deg", "fresnel", "schlick", "error"}, {}};
+        Csv t{csv_join(csv_header<SchlickCase>(), csv_header<SchlickRow>()), {}};
         md << "## Schlick against exact Fresnel\n\n"
            << "`schlick_error.csv` (`case,eta,angle_deg,fresnel,schlick,error`, 0-90° in 0.25° steps), "
-           << "`schlick_error.png`. Beyond the critical angle both are 1 (the tracer folds TIR in). "
+           << "`schlick_error.png`. " << schlick_text(res)
            << "Inside, RTIOW evaluates Schlick with the incident cosine; the last case uses the transmitted cosine "
               "instead.\n\n| case | max abs error | at | mean abs error |\n|---|---|---|---|\n";
         for (const auto& c : res.schlick) {
-            for (const auto& row : c.rows)
-                t.add({c.name, fmt(c.eta), fmt(row.angle_deg), fmt(row.fresnel), fmt(row.schlick),
-                       fmt(row.schlick - row.fresnel)});
+            for (const auto& row : c.rows) t.add(csv_join(csv_cells(c), csv_cells(row)));
             md << "| " << c.name << " | " << fmt(c.max_error, 3) << " | " << fmt(c.max_error_at) << "° | "
                << fmt(c.mean_error, 3) << " |\n";
         }
@@ -298,15 +347,13 @@ void write(const Result& res, const std::string& dir) {
         save_json(scenes, "convergence_reference.json", cv.reference_scene);
         save_json(scenes, "convergence_stochastic.json", cv.stochastic_scene);
         write_image(path("convergence_reference.png"), cv.reference);
-        Csv t{{"spp", "rmse", "seconds"}, {}};
         std::vector<double> xs, ys;
         for (const auto& row : cv.rows) {
             xs.push_back(row.spp);
             ys.push_back(row.rmse);
-            t.add({std::to_string(row.spp), fmt(row.rmse), fmt(row.seconds, 4)});
         }
         write_image(path("convergence_stochastic.png"), cv.stochastic);
-        write_csv(path("convergence.csv"), t);
+        write_csv(path("convergence.csv"), csv_table(cv.rows));
         const LineFit& fit = cv.fit;
         std::ostringstream b;
         b << "set datafile separator ','\nset logscale x 4\nset logscale y 10\nset format y '%g'\n"
@@ -327,9 +374,7 @@ void write(const Result& res, const std::string& dir) {
               "`fresnel-tree`, threshold 0, depth 49; stochastic: pixel centres (no jitter), depth 49 (the book's 50), seed 7.\n\n"
            << "| spp | RMSE |\n|---|---|\n";
         for (size_t k = 0; k < xs.size(); ++k) md << "| " << xs[k] << " | " << fmt(ys[k], 4) << " |\n";
-        md << "\nLeast-squares slope of log RMSE against log spp: **" << fmt(fit.slope, 4)
-           << "** (1/√spp is −0.5): the one-branch choice is an unbiased estimator of the tree, its error falls "
-              "like 1/√spp.\n\n![convergence](convergence.png)\n";
+        md << "\n" << convergence_text(res) << "\n\n![convergence](convergence.png)\n";
     }
     write_text_atomic(path("summary.md"), md.str());
 }

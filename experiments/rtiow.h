@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/fields.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "experiments/common.h"
@@ -71,14 +72,93 @@ struct Convergence {
     LineFit fit;  // log RMSE against log spp
 };
 
+// What the summary states beside its tables, each from the numbers (`judge`).
+struct Findings {
+    bool solid_without_tir = false;  // every stage but the hollow sphere: 0 TIR nodes
+    bool hollow_with_tir = false;    // the hollow sphere: TIR nodes
+    bool schlick_one_at_tir = false; // every row whose exact Fresnel is 1 has Schlick 1 too (TIR folded in)
+    bool slope_one_half = false;     // the convergence slope within 0.1 of −1/2
+};
+
 struct Result {
     bool quick = false;
     std::vector<StageResult> stages;
     std::vector<SchlickCase> schlick;
     Convergence convergence;
+    Findings findings;  // judge(*this), set by compute
 };
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);
 
+// The findings from a Result's numbers (pure; compute stores them in Result::findings) and
+// the summary's sentences that state them, worded by r.findings.
+Findings judge(const Result& r);
+std::string tir_text(const Result& r);          // the solid sphere: listings 1.51 and 1.54 alike?
+std::string hollow_text(const Result& r);       // the hollow sphere's TIR
+std::string schlick_text(const Result& r);      // both 1 beyond the critical angle?
+std::string convergence_text(const Result& r);  // the slope against 1/√spp
+
 }  // namespace refract::experiments::rtiow
+
+namespace refract {
+
+template <>
+struct Fields<experiments::rtiow::StageResult> {
+    static auto list() {
+        using S = experiments::rtiow::StageResult;
+        return std::make_tuple(derived<S>("id", [](const S& s) { return s.stage.id; }),
+                               derived<S>("caption", [](const S& s) { return s.stage.caption; }),
+                               field("scene", &S::scene), field("rgb", &S::image), field("tir_nodes", &S::tir_nodes));
+    }
+};
+template <>
+struct Fields<experiments::rtiow::SchlickRow> {
+    static auto list() {
+        using R = experiments::rtiow::SchlickRow;
+        return std::make_tuple(field("angle_deg", &R::angle_deg), field("fresnel", &R::fresnel),
+                               field("schlick", &R::schlick),
+                               derived<R>("error", [](const R& r) { return r.schlick - r.fresnel; }).csv_only());
+    }
+};
+template <>
+struct Fields<experiments::rtiow::SchlickCase> {
+    static auto list() {
+        using C = experiments::rtiow::SchlickCase;
+        return std::make_tuple(field("name", &C::name).csv("case"), field("eta", &C::eta),
+                               field("use_cos_t", &C::use_cos_t).python_only(), field("rows", &C::rows).table(),
+                               field("max_error", &C::max_error).python_only(),
+                               field("max_error_at", &C::max_error_at).python_only(),
+                               field("mean_error", &C::mean_error).python_only());
+    }
+};
+template <>
+struct Fields<experiments::rtiow::ConvergenceRow> {
+    static auto list() {
+        using R = experiments::rtiow::ConvergenceRow;
+        return std::make_tuple(field("spp", &R::spp), field("rmse", &R::rmse), field("seconds", &R::seconds).digits(4));
+    }
+};
+template <>
+struct Fields<experiments::rtiow::Findings> {
+    static auto list() {
+        using F = experiments::rtiow::Findings;
+        return std::make_tuple(field("solid_without_tir", &F::solid_without_tir),
+                               field("hollow_with_tir", &F::hollow_with_tir),
+                               field("schlick_one_at_tir", &F::schlick_one_at_tir),
+                               field("slope_one_half", &F::slope_one_half));
+    }
+};
+template <>
+struct Fields<experiments::rtiow::Result> {
+    static auto list() {
+        using R = experiments::rtiow::Result;
+        return std::make_tuple(field("quick", &R::quick), field("stages", &R::stages), field("schlick", &R::schlick),
+                               derived<R>("convergence", [](const R& r) { return r.convergence.rows; }),
+                               derived<R>("slope", [](const R& r) { return r.convergence.fit.slope; }),
+                               derived<R>("intercept", [](const R& r) { return r.convergence.fit.intercept; }),
+                               field("findings", &R::findings));
+    }
+};
+
+}  // namespace refract

@@ -10,6 +10,7 @@
 
 #include "core/optics.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/plot.h"
 
 namespace refract::experiments::yasuda1984 {
@@ -99,6 +100,8 @@ double peak_beyond_index(double angle_deg) {
 
 namespace {
 
+constexpr double kWallDistance = 4;  // the wall (offset −4 below) behind the sphere's centre
+
 json sphere_scene(const json& glass, const std::string& description, bool quick) {
     const int size = quick ? 32 : 256;
     return json{
@@ -178,11 +181,33 @@ Result compute(const ExperimentOptions& opt) {
     for (double n : ns) r.peaks.push_back(transmissivity_peak(n));
     r.peak_onset = peak_onset_index();
     r.peak_beyond_70 = peak_beyond_index(70.0);
+    // The numbers the summary quotes beside Fig. 4 and 7.
+    const double brewster = optics::brewster_angle(1.5);
+    const auto f0 = optics::fresnel(1.0, 1.5), fb = optics::fresnel(std::cos(brewster), 1.5),
+               f40 = optics::fresnel(std::cos(40 * M_PI / 180), 1.5);
+    r.R0 = f0->R();
+    r.brewster_deg = brewster * 180.0 / M_PI;
+    r.Rp_brewster = fb->Rp;
+    r.R_brewster = fb->R();
+    r.rs_rp_gap_40 = f40->Rs - f40->Rp;
+    r.onset_closed_form = 2 + std::sqrt(3.0);
+    for (double n : fig7_indices_b()) r.critical.push_back({n, *optics::critical_angle(n) * 180 / M_PI});
+    // Fig. 8: normal-incidence reflectance of the high indices, each sphere's paraxial focus
+    // behind its centre (a ball lens of radius 1: n / (2(n − 1)); negative: diverging), and the
+    // share of the disc beyond the critical angle for n < 1 (parallel light: 1 − n²).
+    r.R0_n5 = optics::fresnel_reflectance(1, 5);
+    r.R0_n10 = optics::fresnel_reflectance(1, 10);
+    r.wall_distance = kWallDistance;
+    // Fig. 9 against Fig. 8(g): the glass's Fresnel reflectance at the centre and near the rim.
+    r.glass_R0 = optics::fresnel_reflectance(1, 1.52);
+    r.glass_R80 = optics::fresnel_reflectance(std::cos(80 * M_PI / 180), 1.52);
     // Fig. 8 and Fig. 9: the rendered panels.
     RenderOptions ro;
     ro.threads = opt.threads;
     for (const auto& s : fig8_spheres()) {
-        RenderedPanel p{fig8_file(s), caption8(s), s.n, fig8_scene(s.n, opt.quick), {}, {}};
+        RenderedPanel p{fig8_file(s), caption8(s), s.n, fig8_scene(s.n, opt.quick), {}, {}, 0, 0};
+        p.focus = s.n / (2 * (s.n - 1));
+        p.tir_share = s.n < 1 ? 1 - s.n * s.n : 0;
         auto rr = render(scene_from_json(p.scene, p.file + ".json"), ro);
         p.image = std::move(rr.image);
         p.stats = rr.stats;
@@ -192,14 +217,171 @@ Result compute(const ExperimentOptions& opt) {
         const double kr = fig9_reflectivities()[k];
         RenderedPanel p{fig9_file(static_cast<int>(k)),
                         "(" + std::string(1, static_cast<char>('a' + k)) + ") reflectivity " + fmt(kr), kr,
-                        fig9_scene(kr, opt.quick), {}, {}};
+                        fig9_scene(kr, opt.quick), {}, {}, 0, 0};
         auto rr = render(scene_from_json(p.scene, p.file + ".json"), ro);
         p.image = std::move(rr.image);
         p.stats = rr.stats;
         r.fig9.push_back(std::move(p));
     }
     r.cost = compute_cost(opt);
+    r.findings = judge(r);
     return r;
+}
+
+namespace {
+
+const TransmissivityPeak* peak_of(const Result& r, double n) {
+    for (const auto& p : r.peaks)
+        if (p.n == n) return &p;
+    return nullptr;
+}
+double peak_angle(const Result& r, double n) {
+    const auto* p = peak_of(r, n);
+    return p ? p->angle_deg : 0.0;
+}
+const RenderedPanel* panel_of(const std::vector<RenderedPanel>& panels, double value) {
+    for (const auto& p : panels)
+        if (p.value == value) return &p;
+    return nullptr;
+}
+
+}  // namespace
+
+Findings judge(const Result& r) {
+    Findings f;
+    // Fig. 4.
+    f.rs_rp_close_below_40 = r.rs_rp_gap_40 < 0.1;
+    f.R_one_at_grazing = !r.fig4.empty() && r.fig4.back().angle_deg == 90 && std::abs(r.fig4.back().R - 1) < 1e-12;
+    // Fig. 7: the paper's "for n ≳ 5, T peaks above 70°".
+    const auto *p5 = peak_of(r, 5), *p10 = peak_of(r, 10);
+    f.paper_peak_holds = p5 && p10 && p5->interior && p10->interior && p5->angle_deg > 70 && p10->angle_deg > 70;
+    f.onset_is_closed_form = std::abs(r.peak_onset - r.onset_closed_form) < 1e-5;
+    double last = -1;
+    int interior = 0;
+    f.peak_moves_to_grazing = true;
+    for (const auto& p : r.peaks) {  // ascending n
+        if (!p.interior) continue;
+        f.peak_moves_to_grazing = f.peak_moves_to_grazing && p.angle_deg > last;
+        last = p.angle_deg;
+        ++interior;
+    }
+    f.peak_moves_to_grazing = f.peak_moves_to_grazing && interior >= 2;
+    // Panel (b): n = 0.2 and 0.1 rise above T(0°) before the critical angle; every n < 1 is
+    // 0 beyond its critical angle.
+    f.low_n_rise = true;
+    for (double n : {0.2, 0.1}) {
+        double T0 = -1, top = -1;
+        for (const auto& row : r.fig7)
+            if (row.n == n) {
+                if (T0 < 0) T0 = row.T;
+                top = std::max(top, row.T);
+            }
+        f.low_n_rise = f.low_n_rise && T0 >= 0 && top > T0;
+    }
+    f.zero_beyond_critical = !r.critical.empty();
+    for (const auto& c : r.critical)
+        for (const auto& row : r.fig7)
+            if (row.n == c.n && row.angle_deg > c.angle_deg && row.T != 0) f.zero_beyond_critical = false;
+    // Fig. 8.
+    f.lenses_as_described = !r.fig8.empty();
+    for (const auto& p : r.fig8)
+        if (p.value > 1 ? !(p.focus > 0 && p.focus < r.wall_distance) : !(p.focus < 0)) f.lenses_as_described = false;
+    const auto *a08 = panel_of(r.fig8, 0.8), *a01 = panel_of(r.fig8, 0.1);
+    f.mirror_rim_and_whole = a08 && a01 && a08->tir_share < 0.5 && a01->tir_share > 0.9;
+    f.high_n_mirror_like = r.R0_n10 > r.R0_n5 && r.R0_n5 > 0.25;
+    // Fig. 9 against Fig. 8(g).
+    f.fresnel_rim_brightens = r.glass_R80 > 2 * r.glass_R0;
+    // §5.
+    const CostResult& c = r.cost;
+    const double inc = counted_increase(c, "yasuda1984");
+    f.count_about_40 = inc >= 0.3 && inc <= 0.5;
+    const double quarter = c.sphere_test.muldiv() / muldiv_of(c, "yasuda1984", "constant");
+    f.test_about_quarter = quarter >= 0.2 && quarter <= 0.3;
+    f.identical_trees = c.render_stats[0].segments == c.render_stats[1].segments &&
+                        c.render_stats[0].tree_nodes == c.render_stats[1].tree_nodes;
+    f.measured_below_counted = measured_render_increase(c) < counted_segment_increase(c);
+    if (!c.memory.empty()) {
+        const MemoryRow &deep = c.memory.back(), &half = c.memory[(c.memory.size() - 1) / 2];
+        const double share =
+            static_cast<double>(deep.list_threshold0.peak_list) / static_cast<double>(deep.whitted.peak_list);
+        f.list_about_half_tree = share >= 0.25 && share <= 0.75;
+        f.threshold_list_flat = deep.list_threshold_1_255.peak_list == half.list_threshold_1_255.peak_list;
+    }
+    return f;
+}
+
+std::string fig4_text(const Result& r) {
+    std::ostringstream s;
+    if (r.findings.R_one_at_grazing) s << "R rises to 1 at grazing incidence. ";
+    else s << "R reaches " << fmt(r.fig4.empty() ? 0.0 : r.fig4.back().R, 6) << " at the last angle computed. ";
+    if (r.findings.rs_rp_close_below_40)
+        s << "As the paper notes, Rs alone or Rp alone would change the picture little below ~40°, where they differ "
+          << "by less than " << fmt(r.rs_rp_gap_40, 2) << ".";
+    else
+        s << "The paper notes that Rs alone or Rp alone would change the picture little below ~40°; here they differ "
+          << "by up to " << fmt(r.rs_rp_gap_40, 2) << " there, which is not little.";
+    return s.str();
+}
+
+std::string fig7_text(const Result& r) {
+    const Findings& f = r.findings;
+    std::ostringstream s;
+    s << "\nAn interior maximum exists for n > " << fmt(r.peak_onset, 7)
+      << " (below that T falls monotonically from normal incidence); it lies beyond 70° for n > "
+      << fmt(r.peak_beyond_70, 4) << ". ";
+    if (f.paper_peak_holds) s << "So the paper's statement holds for n ≳ 5 (n = 5: peak at ";
+    else s << "So the paper's statement does not hold for n ≳ 5, only beyond n = " << fmt(r.peak_beyond_70, 4) << " (n = 5: peak at ";
+    s << fmt(peak_angle(r, 5), 4) << "°, n = 10: " << fmt(peak_angle(r, 10), 4)
+      << "°). The onset has a closed form: the θ² terms of Rs and Rp cancel in their mean, and the θ⁴ term "
+         "of T(θ) = 1 − R(θ) at normal incidence is (n−1)²(n²−4n+1)/(2n³(n+1)²), positive for "
+         "n > 2 + √3 = "
+      << fmt(r.onset_closed_form, 7);
+    if (!f.onset_is_closed_form) s << ", which the measured onset (" << fmt(r.peak_onset, 7) << ") misses";
+    if (f.low_n_rise)
+        s << " (and for n < 2 − √3 = 0.268, which is why the n = 0.2 and 0.1 curves of panel (b) rise before "
+             "their critical angles). ";
+    else
+        s << " (and for n < 2 − √3 = 0.268, though the n = 0.2 and 0.1 curves of panel (b) computed here do not "
+             "rise before their critical angles). ";
+    if (f.peak_moves_to_grazing) s << "Past the onset the maximum moves quickly from 0° towards grazing incidence. ";
+    else s << "Past the onset the maximum does not move steadily towards grazing incidence (see the table). ";
+    s << (f.zero_beyond_critical ? "For n < 1, T = 0 beyond the critical angle arcsin n ("
+                                 : "For n < 1, T should be 0 beyond the critical angle arcsin n, but is not 0 there in "
+                                   "every curve computed (");
+    for (size_t k = 0; k < r.critical.size(); ++k)
+        s << (k ? ", " : "") << "n = " << fmt(r.critical[k].n) << ": " << fmt(r.critical[k].angle_deg, 4) << "°";
+    s << ").";
+    return s.str();
+}
+
+std::string fig8_text(const Result& r) {
+    const Findings& f = r.findings;
+    std::ostringstream s;
+    if (f.lenses_as_described)
+        s << "Refraction turns the floor and wall upside down inside the sphere for n > 1; for n < 1 the sphere acts "
+             "as a diverging lens";
+    else
+        s << "Not every sphere focuses as a lens of its index should (n > 1: a focus in front of the wall, which turns "
+             "floor and wall upside down; n < 1: diverging)";
+    const auto *a08 = panel_of(r.fig8, 0.8), *a01 = panel_of(r.fig8, 0.1);
+    if (f.mirror_rim_and_whole)
+        s << " and total reflection makes its rim (n = 0.8) or nearly all of it (n = 0.1) a mirror. ";
+    else
+        s << "; total reflection covers " << fmt(a08 ? a08->tir_share : 0.0, 2) << " of the disc at n = 0.8 and "
+          << fmt(a01 ? a01->tir_share : 0.0, 2) << " at n = 0.1 (parallel light). ";
+    if (f.high_n_mirror_like) s << "High indices (5, 10) look increasingly metallic (R(0°) = ";
+    else s << "High indices (5, 10) reflect at normal incidence R(0°) = ";
+    s << fmt(r.R0_n5, 3) << " and " << fmt(r.R0_n10, 3) << (f.high_n_mirror_like ? ")." : ".");
+    return s.str();
+}
+
+std::string fig9_text(const Result& r) {
+    if (r.findings.fresnel_rim_brightens)
+        return "Against Fig. 8(g) (the same sphere with Fresnel): with a constant ks the rim does not brighten and the "
+               "centre is as reflective as the rim, which is what the paper calls the loss of transparent quality.";
+    return "Against Fig. 8(g) (the same sphere with Fresnel): there R rises only from " + fmt(r.glass_R0, 3) +
+           " at the centre to " + fmt(r.glass_R80, 3) +
+           " at 80°, so a constant ks loses little of the transparent quality here.";
 }
 
 void write(const Result& res, const std::string& dir) {
@@ -212,10 +394,8 @@ void write(const Result& res, const std::string& dir) {
 
     // ---- Fig. 4: Rs, Rp and their mean for n = 1.5, 0-90 degrees in 0.5 degree steps.
     {
-        Csv t{{"angle_deg", "Rs", "Rp", "R"}, {}};
-        for (const auto& row : res.fig4) t.add({fmt(row.angle_deg), fmt(row.Rs), fmt(row.Rp), fmt(row.R)});
-        write_csv(path("fig4.csv"), t);
-        const double brewster = optics::brewster_angle(1.5) * 180.0 / M_PI;
+        write_csv(path("fig4.csv"), csv_table(res.fig4));
+        const double brewster = res.brewster_deg;
         std::ostringstream b;
         b << "set datafile separator ','\nset key top left box opaque\n"
           << "set xlabel 'angle of incidence (degrees)'\nset ylabel 'reflectivity'\n"
@@ -227,23 +407,16 @@ void write(const Result& res, const std::string& dir) {
           << "     '' using 1:3 every ::1 with lines lw 2 lc rgb '#d62728' title 'R_p (p-polarised)', \\\n"
           << "     '' using 1:4 every ::1 with lines lw 3 lc rgb 'black' title 'R = (R_s + R_p)/2 (eq. 7)'\n";
         gnuplot_figure(dir, "fig4", b.str());
-        const auto f0 = optics::fresnel(1.0, 1.5);
-        const auto fb = optics::fresnel(std::cos(optics::brewster_angle(1.5)), 1.5);
         md << "## Fig. 4: reflectivity against angle of incidence, n = 1.5\n\n"
            << "`fig4.csv` (`angle_deg,Rs,Rp,R`, 0-90° in 0.5° steps), `fig4.png`/`.pdf`. "
-           << "R(0°) = " << fmt(f0->R(), 6) << " (((n−1)/(n+1))² = 0.04); Brewster's angle "
-           << fmt(brewster, 6) << "°, where Rp = " << fmt(fb->Rp, 3) << " and R = " << fmt(fb->R(), 4)
-           << "; R rises to 1 at grazing incidence. As the paper notes, Rs alone or Rp alone would change "
-           << "the picture little below ~40°, where they differ by less than "
-           << fmt(optics::fresnel(std::cos(40 * M_PI / 180), 1.5)->Rs - optics::fresnel(std::cos(40 * M_PI / 180), 1.5)->Rp, 2)
-           << ".\n\n![Fig. 4](fig4.png)\n\n";
+           << "R(0°) = " << fmt(res.R0, 6) << " (((n−1)/(n+1))² = 0.04); Brewster's angle "
+           << fmt(brewster, 6) << "°, where Rp = " << fmt(res.Rp_brewster, 3) << " and R = " << fmt(res.R_brewster, 4)
+           << "; " << fig4_text(res) << "\n\n![Fig. 4](fig4.png)\n\n";
     }
 
     // ---- Fig. 7: T = 1 - R for several indices, (a) n > 1, (b) n < 1; peaks.
     {
-        Csv t{{"n", "angle_deg", "T"}, {}};
-        for (const auto& row : res.fig7) t.add({fmt(row.n), fmt(row.angle_deg), fmt(row.T)});
-        write_csv(path("fig7.csv"), t);
+        write_csv(path("fig7.csv"), csv_table(res.fig7));
         auto panel = [&](const std::string& name, const std::vector<double>& ns, const std::string& title,
                          const std::string& key) {
             std::ostringstream b;
@@ -263,56 +436,31 @@ void write(const Result& res, const std::string& dir) {
         panel("fig7b", fig7_indices_b(), "Fig. 7(b)  Transmissivity against angle of incidence, n < 1",
               "top right");
 
-        Csv peaks{{"n", "peak_angle_deg", "T_peak", "T_0", "interior_peak"}, {}};
         md << "## Fig. 7: transmissivity against angle of incidence and index\n\n"
            << "`fig7.csv` (`n,angle_deg,T`, 0-90° in 0.1° steps plus the critical angle for n < 1) for n = 1.2, 1.5, 2, 3, 5, 10 (panel (a), "
            << "`fig7a.png`) and n = 0.9, 0.8, 0.6, 0.4, 0.2, 0.1 (panel (b), `fig7b.png`); `fig7_peaks.csv`.\n\n"
            << "The paper: for n ≳ 5, T rises with the angle, peaks above 70° and then falls steeply. Measured "
            << "(largest T over 0-90°, located to 1e-6°):\n\n| n | T(0°) | peak angle | T at peak |\n|---|---|---|---|\n";
-        for (const auto& p : res.peaks) {
-            const double n = p.n;
-            peaks.add({fmt(n), fmt(p.angle_deg, 8), fmt(p.T, 8), fmt(p.T0, 8), p.interior ? "1" : "0"});
-            md << "| " << fmt(n) << " | " << fmt(p.T0, 4) << " | "
+        for (const auto& p : res.peaks)
+            md << "| " << fmt(p.n) << " | " << fmt(p.T0, 4) << " | "
                << (p.interior ? fmt(p.angle_deg, 4) + "°" : std::string("none (T falls from 0°)")) << " | "
                << fmt(p.T, 4) << " |\n";
-        }
-        write_csv(path("fig7_peaks.csv"), peaks);
-        const double onset = res.peak_onset, beyond70 = res.peak_beyond_70;
-        md << "\nAn interior maximum exists for n > " << fmt(onset, 7)
-           << " (below that T falls monotonically from normal incidence); it lies beyond 70° for n > "
-           << fmt(beyond70, 4) << ". So the paper's statement holds for n ≳ 5 (n = 5: peak at "
-           << fmt(transmissivity_peak(5).angle_deg, 4) << "°, n = 10: "
-           << fmt(transmissivity_peak(10).angle_deg, 4)
-           << "°). The onset has a closed form: the θ² terms of Rs and Rp cancel in their mean, and the θ⁴ term "
-              "of T(θ) = 1 − R(θ) at normal incidence is (n−1)²(n²−4n+1)/(2n³(n+1)²), positive for "
-              "n > 2 + √3 = "
-           << fmt(2 + std::sqrt(3.0), 7)
-           << " (and for n < 2 − √3 = 0.268, which is why the n = 0.2 and 0.1 curves of panel (b) rise before "
-              "their critical angles). Past the onset the maximum moves quickly from 0° towards grazing "
-              "incidence. For n < 1, T = 0 beyond the critical angle arcsin n (";
-        for (size_t k = 0; k < fig7_indices_b().size(); ++k) {
-            const double n = fig7_indices_b()[k];
-            md << (k ? ", " : "") << "n = " << fmt(n) << ": " << fmt(*optics::critical_angle(n) * 180 / M_PI, 4) << "°";
-        }
-        md << ").\n\n![Fig. 7(a)](fig7a.png)\n![Fig. 7(b)](fig7b.png)\n\n";
+        write_csv(path("fig7_peaks.csv"), csv_table(res.peaks));
+        md << fig7_text(res) << "\n\n![Fig. 7(a)](fig7a.png)\n![Fig. 7(b)](fig7b.png)\n\n";
     }
 
     // ---- Fig. 8 and Fig. 9: rendered panels, assembled with their captions.
     const std::string scenes = path("scenes");
     {
-        Csv stats{{"panel", "n", "seconds", "segments", "tree_nodes", "pruned", "peak_list"}, {}};
         std::vector<Panel> panels;
         double total = 0;
         for (const auto& p : res.fig8) {
             save_json(scenes, p.file + ".json", p.scene);
             write_image(path(p.file + ".png"), p.image);
             total += p.stats.seconds;
-            stats.add({p.file.substr(5), fmt(p.value), fmt(p.stats.seconds, 4), std::to_string(p.stats.segments),
-                       std::to_string(p.stats.tree_nodes), std::to_string(p.stats.pruned),
-                       std::to_string(p.stats.peak_list)});
             panels.push_back({p.file + ".png", p.caption});
         }
-        write_csv(path("fig8_stats.csv"), stats);
+        write_csv(path("fig8_stats.csv"), csv_table(res.fig8));
         image_grid_figure(dir, "fig8", 2, 5, panels, "Fig. 8  Transparent spheres, improved ray tracing (exact Fresnel)");
         md << "## Fig. 8: ten transparent spheres (fresnel-tree)\n\n"
            << "Panels `fig8_a.png` ... `fig8_j.png`, assembled with captions in `fig8.png`/`.pdf`; scenes in "
@@ -320,12 +468,8 @@ void write(const Result& res, const std::string& dir) {
            << "on a yellow/red checker floor in front of a white/blue checker wall, exact Fresnel reflectance, "
            << "fresnel-tree (threshold 0.001, depth 20, " << (res.quick ? "1 sample" : "16 jittered samples")
            << " per pixel), a point light inside the highlight sphere "
-           << "(emissive, 30× the white of the surfaces), whose reflection is the bright spot. Refraction turns the "
-           << "floor and wall upside down inside the sphere for n > 1; for n < 1 the sphere acts as a diverging "
-           << "lens and total reflection makes its rim (n = 0.8) or nearly all of it (n = 0.1) a mirror. "
-           << "High indices (5, 10) look increasingly metallic (R(0°) = "
-           << fmt(optics::fresnel_reflectance(1, 5), 3) << " and " << fmt(optics::fresnel_reflectance(1, 10), 3)
-           << ").\n\nRender time of all ten panels: " << fmt(total, 3) << " s (" << (res.quick ? 32 : 256)
+           << "(emissive, 30× the white of the surfaces), whose reflection is the bright spot. " << fig8_text(res)
+           << "\n\nRender time of all ten panels: " << fmt(total, 3) << " s (" << (res.quick ? 32 : 256)
            << "² pixels each; `fig8_stats.csv` has rays and tree counters; the paper: about 10 minutes on an "
            << "OKITAC SYSTEM 50/40).\n\n![Fig. 8](fig8.png)\n\n";
     }
@@ -340,12 +484,10 @@ void write(const Result& res, const std::string& dir) {
         md << "## Fig. 9: constant reflectivity (Whitted's ks, kt = 1 − ks)\n\n"
            << "`fig9_a.png` ... `fig9_f.png`, assembled in `fig9.png`/`.pdf`; reflectivity 0.0, 0.2, ..., 1.0 "
            << "everywhere on the sphere, directions from n = 1.52 (where the directions give total internal "
-           << "reflection all light is reflected). Against Fig. 8(g) (the same sphere with Fresnel): with a "
-           << "constant ks the rim does not brighten and the centre is as reflective as the rim, which is what "
-           << "the paper calls the loss of transparent quality.\n\n![Fig. 9](fig9.png)\n\n";
+           << "reflection all light is reflected). " << fig9_text(res) << "\n\n![Fig. 9](fig9.png)\n\n";
     }
 
-    md << write_cost(res.cost, res.quick, dir);
+    md << write_cost(res, dir);
     write_text_atomic(path("summary.md"), md.str());
 }
 

@@ -10,6 +10,7 @@
 #include "core/optics.h"
 #include "core/tracer.h"
 #include "experiments/common.h"
+#include "experiments/field_csv.h"
 #include "experiments/plot.h"
 #include "experiments/yasuda1984.h"
 
@@ -75,8 +76,7 @@ std::pair<S, S> yasuda_node(const NodeInput<S>& in, Model m) {
 
 // The same node as refract computes it: the orientation of core/tracer.cpp intersect()
 // (outward normal from geometry/shapes.cpp), then refract's own dielectric node
-// (core/interaction.h dielectric_node: Heckbert refraction, reflection, reflectance,
-// branch factors) and the children's cumulative attenuation (attenuate, as the ray-tree
+// (core/interaction.h: Heckbert refraction, reflection, reflectance, branch factors) and the children's cumulative attenuation (attenuate, as the ray-tree
 // walker applies it), instantiated with the counting scalar.
 template <class S>
 S refract_node(const NodeInput<S>& in, Model m) {
@@ -202,7 +202,8 @@ CostResult compute_cost(const ExperimentOptions& opt) {
     cr.sphere_test = count_sphere_test();
     cr.plane_test = count_plane_test();
 
-    // ---- Measured time per node: SceneTracer::node() over the hits of primary rays on
+    // ---- Measured time per node: SceneTracer::interact (the dielectric node of
+    // core/interaction.h) over the hits of primary rays on
     // the Fig. 8 sphere (n = 1.52), for each reflectance model; and per intersection search.
     Scene base = scene_from_json(fig8_scene(1.52, false), "cost");
     base.camera.width = base.camera.height = opt.quick ? 48 : 160;
@@ -226,6 +227,7 @@ CostResult compute_cost(const ExperimentOptions& opt) {
     // Timings on a shared machine are noisy: the models are measured in interleaved
     // rounds and each keeps its fastest round.
     const int reps = opt.quick ? 3 : 40, rounds = opt.quick ? 1 : 15;
+    cr.node_rounds = rounds;
     volatile double sink = 0;
     struct Variant {
         Scene scene;
@@ -285,16 +287,18 @@ CostResult compute_cost(const ExperimentOptions& opt) {
     std::vector<double> all_sec[2];
     RenderStats* rstats = cr.render_stats;
     std::vector<Scene> rscenes;
+    cr.render_size = opt.quick ? 24 : 384;
+    cr.render_rounds = opt.quick ? 1 : 7;
     for (int k = 0; k < 2; ++k) {
         json j = k == 0 ? fig9_scene(0.1, false) : fig8_scene(1.52, false);
-        j["camera"]["width"] = j["camera"]["height"] = opt.quick ? 24 : 384;
+        j["camera"]["width"] = j["camera"]["height"] = cr.render_size;
         j["render"]["threshold"] = 0;
         j["render"]["max_depth"] = 10;
         j["render"]["samples"] = 1;
         j["render"]["jitter"] = false;
         rscenes.push_back(scene_from_json(j, "cost"));
     }
-    for (int round = 0; round < (opt.quick ? 1 : 7); ++round)
+    for (int round = 0; round < cr.render_rounds; ++round)
         for (int k = 0; k < 2; ++k) {
             RenderOptions ro;
             ro.threads = 1;
@@ -322,12 +326,100 @@ CostResult compute_cost(const ExperimentOptions& opt) {
         row.whitted = run_one("whitted", 0);
         row.list_threshold0 = run_one("fresnel-tree", 0);
         row.list_threshold_1_255 = run_one("fresnel-tree", 1.0 / 255);
+        row.whitted_bytes = row.whitted.peak_list * kWhittedNodeBytes;
+        row.list_bytes_threshold0 = row.list_threshold0.peak_list * kListEntryBytes;
+        row.list_bytes_threshold_1_255 = row.list_threshold_1_255.peak_list * kListEntryBytes;
         cr.memory.push_back(row);
     }
+    cr.whitted_node_bytes = kWhittedNodeBytes;
+    cr.list_entry_bytes = kListEntryBytes;
+    cr.tree_growth_scene = tree_growth_scene(16, 0, "whitted", false);
     return cr;
 }
 
-std::string write_cost(const CostResult& c, bool quick, const std::string& dir) {
+double muldiv_of(const CostResult& c, const std::string& formulation, const std::string& model) {
+    for (const auto& x : c.node_costs)
+        if (x.formulation == formulation && x.model == model) return static_cast<double>(x.ops.muldiv());
+    return 0;
+}
+double counted_increase(const CostResult& c, const std::string& formulation) {
+    return muldiv_of(c, formulation, "fresnel") / muldiv_of(c, formulation, "constant") - 1;
+}
+double search_muldiv(const CostResult& c) {
+    return 2.0 * static_cast<double>(c.sphere_test.muldiv()) + 2.0 * static_cast<double>(c.plane_test.muldiv());
+}
+double counted_segment_increase(const CostResult& c) {
+    const double yc = muldiv_of(c, "yasuda1984", "constant"), yf = muldiv_of(c, "yasuda1984", "fresnel");
+    return (yf - yc) / (yc + search_muldiv(c));
+}
+double measured_render_increase(const CostResult& c) { return c.render_best[1] / c.render_best[0] - 1; }
+
+std::string cost_text(const Result& r) {
+    const CostResult& c = r.cost;
+    std::ostringstream s;
+    if (r.findings.count_about_40)
+        s << "In the paper's own formulation the count agrees with its \"about 40 %\". ";
+    else
+        s << "In the paper's own formulation the count (+" << fmt(100 * counted_increase(c, "yasuda1984"), 3)
+          << " %) does not agree with its \"about 40 %\". ";
+    s << "The paper also reckons one surface's intersection test at about a node's cost; counted here a ray-sphere "
+         "test is "
+      << c.sphere_test.muldiv() << " and a ray-plane test " << c.plane_test.muldiv() << " multiplications/divisions, ";
+    if (r.findings.test_about_quarter) s << "a quarter of the node";
+    else
+        s << fmt(static_cast<double>(c.sphere_test.muldiv()) / muldiv_of(c, "yasuda1984", "constant"), 2)
+          << " of the node";
+    s << ", so finding the next surface in the four-object Fig. 8 scene costs " << search_muldiv(c)
+      << " and per ray segment (node + search) the counted increase is +" << fmt(100.0 * counted_segment_increase(c), 3)
+      << " % (the increase shrinks as scenes hold more surfaces).";
+    return s.str();
+}
+
+std::string trees_text(const Result& r) {
+    return r.findings.identical_trees ? "identical trees" : "trees of different size";
+}
+
+std::string time_text(const Result& r) {
+    const CostResult& c = r.cost;
+    std::ostringstream s;
+    if (r.findings.measured_below_counted)
+        s << "Counted operations overstate the cost on a current CPU: the reflectance is a few arithmetic "
+             "instructions beside memory traffic, branches, square roots and the shading of the leaves, so the "
+             "paper's conclusion (the total time barely grows) holds even more strongly";
+    else
+        s << "This run's increase is not below the counted one per ray segment (+"
+          << fmt(100.0 * counted_segment_increase(c), 3)
+          << " %): measured, the reflectance costs at least what its arithmetic counts, and the paper's conclusion "
+             "(the total time barely grows) rests on the counted increase alone";
+    s << (r.quick ? " (quick mode: tiny image, one round; timings are noisy)" : "") << ".";
+    return s.str();
+}
+
+std::string memory_text(const Result& r) {
+    const CostResult& c = r.cost;
+    const MemoryRow* deep = c.memory.empty() ? nullptr : &c.memory.back();
+    std::ostringstream s;
+    if (r.findings.list_about_half_tree || !deep)
+        s << "With threshold 0 the list is not small: processed first-in first-out it holds a whole level of the "
+             "tree, which for a tree that keeps branching is about half of it, so the saving is a constant factor "
+             "(the entry is smaller and only the widest level is held), not the exponential one. ";
+    else
+        s << "With threshold 0 the list, processed first-in first-out, holds a whole level of the tree: here "
+          << deep->list_threshold0.peak_list << " entries against the stored tree's " << deep->whitted.peak_list
+          << " nodes at depth " << deep->max_depth << ", not about half of it as for a tree that keeps branching. ";
+    if (r.findings.threshold_list_flat || !deep)
+        s << "The saving the paper describes comes with its threshold: weights fall geometrically, branches are "
+             "dropped, and the list stays at a few entries whatever the depth limit. ";
+    else
+        s << "The saving the paper describes should come with its threshold (weights fall geometrically, branches "
+             "are dropped), but here the list still grows with the depth limit (" << deep->list_threshold_1_255.peak_list
+          << " entries at depth " << deep->max_depth << "). ";
+    s << "(A last-in first-out list, depth first, would need at most one pending sibling per level.)";
+    return s.str();
+}
+
+std::string write_cost(const Result& res, const std::string& dir) {
+    const CostResult& c = res.cost;
     auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
     std::ostringstream md;
     const auto& costs = c.node_costs;
@@ -367,7 +459,6 @@ std::string write_cost(const CostResult& c, bool quick, const std::string& dir) 
 
     const OpCounts yc = find("yasuda1984", "constant"), yf = find("yasuda1984", "fresnel"),
                    rc = find("refract", "constant"), rf = find("refract", "fresnel"), rs = find("refract", "schlick");
-    const double search = 2.0 * sphere.muldiv() + 2.0 * plane.muldiv();
     md << "## Cost of Fresnel reflectance (§5)\n\n"
        << "The paper: computing the reflectivity by eq. 7 adds about 40 % multiplications/divisions to a "
           "branching node, which is small beside the intersection search (one surface's test costs about as "
@@ -378,51 +469,35 @@ std::string write_cost(const CostResult& c, bool quick, const std::string& dir) 
        << yc.muldiv() << " | " << yf.muldiv() << " | +"
        << fmt(100.0 * (static_cast<double>(yf.muldiv()) / yc.muldiv() - 1), 3) << " % | "
        << find("yasuda1984", "schlick").muldiv() << " |\n"
-       << "| refract's kernel (`core/tracer.cpp` node(), Heckbert refraction, fresnel-tree step ⑥) | " << rc.muldiv()
-       << " | " << rf.muldiv() << " | +" << fmt(100.0 * (static_cast<double>(rf.muldiv()) / rc.muldiv() - 1), 3)
+       << "| refract's kernel (the dielectric node of `core/interaction.h`, Heckbert refraction, fresnel-tree step ⑥) | "
+       << rc.muldiv() << " | " << rf.muldiv() << " | +" << fmt(100.0 * (static_cast<double>(rf.muldiv()) / rc.muldiv() - 1), 3)
        << " % | " << rs.muldiv() << " |\n\n"
        << "(multiplications + divisions; square roots and `pow` counted apart: " << yc.sqrt << " → " << yf.sqrt
-       << " and " << rc.sqrt << " → " << rf.sqrt << ".) In the paper's own formulation the count agrees with "
-       << "its \"about 40 %\". The paper also reckons one surface's intersection test at about a node's cost; "
-       << "counted here a ray-sphere test is " << sphere.muldiv() << " and a ray-plane test " << plane.muldiv()
-       << " multiplications/divisions, a quarter of the node, so finding the next surface in the four-object "
-       << "Fig. 8 scene costs " << search << " and per ray segment (node + search) the counted increase is +"
-       << fmt(100.0 * (yf.muldiv() - yc.muldiv()) / (yc.muldiv() + search), 3)
-       << " % (the increase shrinks as scenes hold more surfaces).\n\n"
-       << "Measured (`cost.csv`, `cost_render.csv`: fastest of 15 and 7 interleaved runs, one thread): `SceneTracer::node()` takes " << fmt(ns_const, 3)
-       << " ns with a constant reflectivity, " << fmt(ns_fres, 3) << " ns with Fresnel (+"
+       << " and " << rc.sqrt << " → " << rf.sqrt << ".) " << cost_text(res) << "\n\n"
+       << "Measured (`cost.csv`, `cost_render.csv`: fastest of " << c.node_rounds << " and " << c.render_rounds
+       << " interleaved runs, one thread): `SceneTracer::interact` (the dielectric node of `core/interaction.h`) takes "
+       << fmt(ns_const, 3) << " ns with a constant reflectivity, " << fmt(ns_fres, 3) << " ns with Fresnel (+"
        << fmt(100 * (ns_fres / ns_const - 1), 3) << " %) and " << fmt(ns_schl, 3)
        << " ns with Schlick; one intersection search in the Fig. 8 scene takes " << fmt(ns_isect, 3)
-       << " ns. A whole render (`cost_render.csv`: the Fig. 8/9 sphere, " << (quick ? 24 : 384) << "², threshold 0, depth 10, identical "
-       << "trees: " << segs[0] << " and " << segs[1] << " segments) takes " << fmt(sec[0], 4) << " s with constant "
+       << " ns. A whole render (`cost_render.csv`: the Fig. 8/9 sphere, " << c.render_size << "², threshold 0, depth 10, "
+       << trees_text(res) << ": " << segs[0] << " and " << segs[1] << " segments) takes " << fmt(sec[0], 4) << " s with constant "
        << "and " << fmt(sec[1], 4) << " s with Fresnel reflectivity (fastest run; medians " << fmt(median[0], 4)
-       << " and " << fmt(median[1], 4) << " s): a total increase of " << fmt(100 * (sec[1] / sec[0] - 1), 3)
-       << " %. Counted operations overstate the cost on a current CPU: the reflectance is a few arithmetic "
-          "instructions beside memory traffic, branches, square roots and the shading of the leaves, so the "
-          "paper's conclusion (the total time barely grows) holds even more strongly"
-       << (quick ? " (quick mode: tiny image, one round; timings are noisy)" : "") << ".\n\n";
+       << " and " << fmt(median[1], 4) << " s): a total increase of " << fmt(100 * (sec[1] / sec[0] - 1), 3) << " %. "
+       << time_text(res) << "\n\n";
 
     // ---- Memory as the tree grows.
-    Csv mem{{"max_depth", "whitted_peak_nodes", "whitted_bytes", "list_peak_entries_threshold0", "list_bytes_threshold0",
-             "list_peak_entries_threshold_1_255", "list_bytes_threshold_1_255", "segments_per_pixel"},
-            {}};
     const int max_d = c.memory.empty() ? 0 : c.memory.back().max_depth;
     std::ostringstream table;
     table << "| depth | Whitted tree (nodes) | bytes | list, threshold 0 (entries) | bytes | list, threshold 1/255 | bytes |\n"
           << "|---|---|---|---|---|---|---|\n";
     for (const auto& row : c.memory) {
         const int d = row.max_depth;
-        const auto &w = row.whitted, &l0 = row.list_threshold0, &l1 = row.list_threshold_1_255;
-        const double pixels = static_cast<double>(w.primary_rays);
-        mem.add({std::to_string(d), std::to_string(w.peak_list), std::to_string(w.peak_list * kWhittedNodeBytes),
-                 std::to_string(l0.peak_list), std::to_string(l0.peak_list * kListEntryBytes), std::to_string(l1.peak_list),
-                 std::to_string(l1.peak_list * kListEntryBytes), fmt(l0.segments / pixels, 6)});
         if (d % 3 == 1 || d == max_d)
-            table << "| " << d << " | " << w.peak_list << " | " << w.peak_list * kWhittedNodeBytes << " | " << l0.peak_list
-                  << " | " << l0.peak_list * kListEntryBytes << " | " << l1.peak_list << " | "
-                  << l1.peak_list * kListEntryBytes << " |\n";
+            table << "| " << d << " | " << row.whitted.peak_list << " | " << row.whitted_bytes << " | "
+                  << row.list_threshold0.peak_list << " | " << row.list_bytes_threshold0 << " | "
+                  << row.list_threshold_1_255.peak_list << " | " << row.list_bytes_threshold_1_255 << " |\n";
     }
-    write_csv(path("memory.csv"), mem);
+    write_csv(path("memory.csv"), csv_table(c.memory));
     std::ostringstream b;
     b << "set datafile separator ','\nset logscale y\nset key top left box opaque\nset grid\n"
       << "set xlabel 'maximum depth of the ray tree'\nset ylabel 'peak memory per pixel (bytes)'\n"
@@ -434,20 +509,11 @@ std::string write_cost(const CostResult& c, bool quick, const std::string& dir) 
     md << "## Memory: stored tree against the list (§3.1.2, §5)\n\n"
        << "`memory.csv`, `memory.png`: the camera inside a thick hollow glass shell (`scenes/tree_growth.json`), "
        << "where both branches of most nodes meet glass again. Peak per pixel: Whitted's stored tree (nodes × "
-       << kWhittedNodeBytes << " bytes: node, pending ray, bottom-up value) against the largest FIFO list of "
-       << "fresnel-tree (entries × " << kListEntryBytes << " bytes):\n\n"
-       << table.str()
-       << "\nWith threshold 0 the list is not small: processed first-in first-out it holds a whole level of the "
-          "tree, which for a tree that keeps branching is about half of it, so the saving is a constant factor "
-          "(the entry is smaller and only the widest level is held), not the exponential one. The saving the "
-          "paper describes comes with its threshold: weights fall geometrically, branches are dropped, and the "
-          "list stays at a few entries whatever the depth limit. (A last-in first-out list, depth first, would "
-          "need at most one pending sibling per level.)\n\n";
-    save_json(path("scenes"), "tree_growth.json", tree_growth_scene(16, 0, "whitted", false));
+       << c.whitted_node_bytes << " bytes: node, pending ray, bottom-up value) against the largest FIFO list of "
+       << "fresnel-tree (entries × " << c.list_entry_bytes << " bytes):\n\n"
+       << table.str() << "\n" << memory_text(res) << "\n\n";
+    save_json(path("scenes"), "tree_growth.json", c.tree_growth_scene);
     return md.str();
 }
-
-
-std::string run_cost(const ExperimentOptions& opt) { return write_cost(compute_cost(opt), opt.quick, opt.out_dir); }
 
 }  // namespace refract::experiments::yasuda1984

@@ -78,8 +78,6 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-std::vector<std::string> gem_file_extensions() { return {".obj", ".off", ".ply", ".pov"}; }
-
 std::string pov_gem_declaration(const Gem& gem, const std::string& name) {
     std::ostringstream s;
     s << "// " << header_comment(gem) << "\n#declare " << name << " = intersection {\n";

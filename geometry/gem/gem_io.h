@@ -7,13 +7,10 @@
 // Coordinates are the gem's own (girdle radius 1, z up); %.17g keeps every double.
 // Files are written to a temporary name beside the target and renamed: never half-written.
 #include <string>
-#include <vector>
 
 #include "geometry/gem/brilliant.h"
 
 namespace refract {
-
-std::vector<std::string> gem_file_extensions();  // {".obj", ".off", ".ply", ".pov"}
 
 // Throws InputError for an unknown extension or a file that cannot be written.
 void write_gem(const Gem& gem, const std::string& path);

@@ -92,9 +92,7 @@ BrilliantCut parse_cut(const py::object& preset, const py::dict& params) {
     return cut;
 }
 
-py::dict metric(const gem_metrics::Metric& m) { return py::dict(py::arg("value") = m.value, py::arg("error") = m.error); }
-
-// experiments/gem_metrics.h: the metrics of one cut, with their errors.
+// experiments/gem_metrics.h: the metrics of one cut, with their errors (its field list), and the cut.
 py::dict measure_cut(const py::object& preset, const py::dict& params, int rays, bool exact, const std::string& material,
                      std::uint64_t seed) {
     const BrilliantCut cut = parse_cut(preset, params);
@@ -103,59 +101,29 @@ py::dict measure_cut(const py::object& preset, const py::dict& params, int rays,
     o.exact_polarisation = exact;
     o.material = material;
     o.seed = seed;
-    gem_metrics::GemMetrics m;
-    {
-        py::gil_scoped_release nogil;
-        m = gem_metrics::measure(build_brilliant(cut), o);
-    }
-    py::dict by_kind, balance;
-    for (const auto& [kind, v] : m.leakage_by_kind) by_kind[py::str(kind)] = v;
-    balance["crown"] = m.balance.crown;
-    balance["girdle"] = m.balance.girdle;
-    balance["pavilion"] = m.balance.pavilion;
-    balance["lost"] = m.balance.lost;
-    balance["missed"] = m.balance.missed;
-    py::dict aset;
-    aset["red"] = m.aset.red;
-    aset["green"] = m.aset.green;
-    aset["blue"] = m.aset.blue;
-    aset["white"] = m.aset.white;
-    return py::dict(py::arg("light_return") = metric(m.light_return), py::arg("fire") = metric(m.fire),
-                    py::arg("leakage") = metric(m.leakage), py::arg("scintillation") = metric(m.scintillation),
-                    py::arg("leakage_by_kind") = by_kind, py::arg("balance") = balance, py::arg("aset") = aset, py::arg("cut") = cut_dict(cut),
-                    py::arg("rays") = m.light_return_rays, py::arg("fire_pixels") = m.fire_pixels,
-                    py::arg("scintillation_pixels") = m.scintillation_pixels);
+    py::dict d = to_python(without_gil([&] { return gem_metrics::measure(build_brilliant(cut), o); }));
+    d["cut"] = cut_dict(cut);
+    return d;
 }
 
 py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
     const BrilliantCut cut = parse_cut(preset, params);
-    Gem gem;
-    {
-        py::gil_scoped_release nogil;
-        gem = build_brilliant(cut);
-    }
+    const Gem gem = without_gil([&] { return build_brilliant(cut); });
     const auto nv = static_cast<py::ssize_t>(gem.mesh.vertices.size());
     const auto nt = static_cast<py::ssize_t>(gem.mesh.triangles.size());
     const auto nf = static_cast<py::ssize_t>(gem.facets.size());
-    py::array_t<double> vertices({nv, py::ssize_t(3)});
-    py::array_t<std::int64_t> triangles({nt, py::ssize_t(3)});
-    py::array_t<std::int64_t> triangle_facet(nt);
-    py::array_t<double> planes({nf, py::ssize_t(4)});
-    auto V = vertices.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < nv; ++i)
-        for (int k = 0; k < 3; ++k) V(i, k) = gem.mesh.vertices[static_cast<size_t>(i)][k];
-    auto T = triangles.mutable_unchecked<2>();
-    auto TF = triangle_facet.mutable_unchecked<1>();
+    std::vector<double> vertices, planes;
+    std::vector<std::int64_t> triangles, triangle_facet;
+    for (const auto& v : gem.mesh.vertices)
+        for (int k = 0; k < 3; ++k) vertices.push_back(v[k]);
     for (py::ssize_t i = 0; i < nt; ++i) {
-        for (int k = 0; k < 3; ++k) T(i, k) = gem.mesh.triangles[static_cast<size_t>(i)][k];
-        TF(i) = gem.triangle_facet[static_cast<size_t>(i)];
+        for (int k = 0; k < 3; ++k) triangles.push_back(gem.mesh.triangles[static_cast<size_t>(i)][k]);
+        triangle_facet.push_back(gem.triangle_facet[static_cast<size_t>(i)]);
     }
-    auto P = planes.mutable_unchecked<2>();
     py::list facets, labels;
-    for (py::ssize_t i = 0; i < nf; ++i) {
-        const GemFacet& f = gem.facets[static_cast<size_t>(i)];
-        for (int k = 0; k < 3; ++k) P(i, k) = f.plane.normal[k];
-        P(i, 3) = f.plane.offset;
+    for (const GemFacet& f : gem.facets) {
+        for (int k = 0; k < 3; ++k) planes.push_back(f.plane.normal[k]);
+        planes.push_back(f.plane.offset);
         labels.append(f.label);
         py::dict fd;
         fd["label"] = f.label;
@@ -166,10 +134,10 @@ py::dict cut_brilliant(const py::object& preset, const py::dict& params) {
     py::dict counts;
     for (const auto& [kind, n] : facet_counts(gem)) counts[py::str(kind)] = n;
     py::dict d;
-    d["vertices"] = vertices;
-    d["triangles"] = triangles;
-    d["triangle_facet"] = triangle_facet;
-    d["planes"] = planes;
+    d["vertices"] = to_numpy(vertices, {nv, 3});
+    d["triangles"] = to_numpy(triangles, {nt, 3});
+    d["triangle_facet"] = to_numpy(triangle_facet, {nt});
+    d["planes"] = to_numpy(planes, {nf, 4});
     d["labels"] = labels;
     d["facets"] = facets;
     d["facet_counts"] = counts;

@@ -35,12 +35,7 @@ Vec3 to_vec3(const py::handle& o, const char* what) {
     return {a.at(0), a.at(1), a.at(2)};
 }
 
-py::array_t<double> array3(const Vec3& v) {
-    py::array_t<double> a(3);
-    auto m = a.mutable_unchecked<1>();
-    for (int k = 0; k < 3; ++k) m(k) = v[k];
-    return a;
-}
+py::array_t<double> array3(const Vec3& v) { return to_numpy(std::vector<double>{v.x(), v.y(), v.z()}, {3}); }
 
 namespace {
 
@@ -106,41 +101,13 @@ ScenePtr scene_from_text(const std::string& text, const std::string& source) {
 
 // ---- Rendering --------------------------------------------------------------------------
 
+// The counters of core/render_stats.h by their field list, with the --stats text and the
+// warning about dropped light.
 py::dict stats_dict(const RenderStats& s) {
-    py::dict d;
-    d["primary_rays"] = s.primary_rays;
-    d["segments"] = s.segments;
-    d["shadow_rays"] = s.shadow_rays;
-    d["tree_nodes"] = s.tree_nodes;
-    d["pruned"] = s.pruned;
-    d["depth_limited"] = s.depth_limited;
-    d["lost_depth"] = s.lost_depth;
-    d["lost_limits"] = s.lost_limits;
-    d["lost_threshold"] = s.lost_threshold;
-    d["peak_list"] = s.peak_list;
-    d["spectral_splits"] = s.spectral_splits;
-    d["shortcut_tests"] = s.shortcut_tests;
-    d["shortcut_taken"] = s.shortcut_taken;
-    d["wavelength_segments"] = s.wavelength_segments;
-    d["photons"] = s.photons;
-    d["photon_segments"] = s.photon_segments;
-    d["deposits"] = s.deposits;
-    d["light_seconds"] = s.light_seconds;
-    d["seconds"] = s.seconds;
+    py::dict d = to_python(s);
     d["summary"] = s.summary();
     d["lost_warning"] = s.lost_warning();
     return d;
-}
-
-// A view of `data` (no copy) with the given shape; `owner` keeps the buffer alive.
-py::array_t<double> view(std::vector<double>& data, std::vector<py::ssize_t> shape, const py::capsule& owner) {
-    std::vector<py::ssize_t> strides(shape.size());
-    py::ssize_t step = sizeof(double);
-    for (size_t k = shape.size(); k-- > 0;) {
-        strides[k] = step;
-        step *= shape[k];
-    }
-    return py::array_t<double>(shape, strides, data.data(), owner);
 }
 
 // Renders on a worker thread with the GIL released; this thread polls Python's signal
@@ -158,8 +125,7 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
     std::unique_ptr<RenderResult> result;
     std::exception_ptr error;
     bool interrupted = false;
-    {
-        py::gil_scoped_release nogil;
+    without_gil([&] {
         std::mutex mu;
         std::condition_variable cv;
         bool done = false;
@@ -188,7 +154,7 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
         }
         lock.unlock();
         worker.join();
-    }
+    });
     if (interrupted) throw py::error_already_set();
     if (error) std::rethrow_exception(error);
 
@@ -196,17 +162,17 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
     const py::capsule owner(r, [](void* p) { delete static_cast<RenderResult*>(p); });
     const py::ssize_t W = r->image.width, H = r->image.height;
     py::dict d;
-    d["rgb"] = view(r->image.rgb, {H, W, 3}, owner);
+    d["rgb"] = to_numpy(r->image, owner);
     d["stats"] = stats_dict(r->stats);
-    if (!r->lost.empty()) d["lost"] = view(r->lost, {H, W, 3}, owner);
+    if (!r->lost.empty()) d["lost"] = to_numpy(r->lost, {H, W, 3}, owner);
     if (spectral_channels) {
-        d["wavelengths"] = view(r->wavelengths, {static_cast<py::ssize_t>(r->wavelengths.size())}, owner);
-        d["spectral"] = view(r->spectral, {H, W, static_cast<py::ssize_t>(r->wavelengths.size())}, owner);
+        d["wavelengths"] = to_numpy(r->wavelengths, {static_cast<py::ssize_t>(r->wavelengths.size())}, owner);
+        d["spectral"] = to_numpy(r->spectral, {H, W, static_cast<py::ssize_t>(r->wavelengths.size())}, owner);
     }
     if (r->polarisation) {
-        d["stokes"] = view(r->polarisation->stokes, {H, W, 4, 3}, owner);
-        d["dolp"] = view(r->polarisation->dolp, {H, W}, owner);
-        d["aolp"] = view(r->polarisation->aolp, {H, W}, owner);
+        d["stokes"] = to_numpy(r->polarisation->stokes, {H, W, 4, 3}, owner);
+        d["dolp"] = to_numpy(r->polarisation->dolp, {H, W}, owner);
+        d["aolp"] = to_numpy(r->polarisation->aolp, {H, W}, owner);
     }
     return d;
 }
@@ -353,12 +319,7 @@ PYBIND11_MODULE(_refract, m) {
               const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
               const double nm = check_wavelength(wavelength);
               const std::optional<PolarisationState> pol = check_polarisation(polarisation);
-              TraceRecord rec;
-              {
-                  py::gil_scoped_release nogil;
-                  rec = trace_ray(s, Ray{o, d}, nm, pol ? &*pol : nullptr);
-              }
-              return trace_result(rec);
+              return trace_result(without_gil([&] { return trace_ray(s, Ray{o, d}, nm, pol ? &*pol : nullptr); }));
           },
           py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none(),
           py::arg("polarisation") = py::none());
@@ -366,12 +327,7 @@ PYBIND11_MODULE(_refract, m) {
           [](const Scene& s, int i, int j, const py::handle& wavelength, const py::handle& polarisation) {
               const double nm = check_wavelength(wavelength);
               const std::optional<PolarisationState> pol = check_polarisation(polarisation);
-              TraceRecord rec;
-              {
-                  py::gil_scoped_release nogil;
-                  rec = trace_pixel(s, i, j, nm, pol ? &*pol : nullptr);
-              }
-              return trace_result(rec);
+              return trace_result(without_gil([&] { return trace_pixel(s, i, j, nm, pol ? &*pol : nullptr); }));
           },
           py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none(),
           py::arg("polarisation") = py::none());
@@ -383,22 +339,14 @@ PYBIND11_MODULE(_refract, m) {
                   throw InputError(path + ": write_image needs an array of shape (height, width, 3)");
               Image img(static_cast<int>(rgb.shape(1)), static_cast<int>(rgb.shape(0)));
               std::copy(rgb.data(), rgb.data() + rgb.size(), img.rgb.begin());
-              py::gil_scoped_release nogil;
-              write_image(path, img, WriteOptions{linear16});
+              without_gil([&] { write_image(path, img, WriteOptions{linear16}); });
           },
           py::arg("path"), py::arg("rgb"), py::arg("linear16") = false,
           "Writes linear RGB (height, width, 3) as `refract render` does: .exr/.hdr/.tif linear, .png/.jpg sRGB "
           "(16-bit linear PNG with linear16); atomically.");
     m.def("read_image",
           [](const std::string& path) {
-              Image img;
-              {
-                  py::gil_scoped_release nogil;
-                  img = read_image(path);
-              }
-              py::array_t<double> a({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t(3)});
-              std::copy(img.rgb.begin(), img.rgb.end(), a.mutable_data());
-              return a;
+              return to_numpy(without_gil([&] { return read_image(path); }));
           },
           py::arg("path"), "Reads an image as stored (linear for EXR), shape (height, width, 3).");
 
