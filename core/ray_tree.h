@@ -217,31 +217,6 @@ public:
         }
     }
 
-    // Entry e's ray has met its first surface(s) at h (found by the walk, or once for several
-    // entries along the same ray: the far field's wavelengths of one photon): Beer–Lambert
-    // over the segment inside, then the callback's intercept, then the node.
-    template <class S, class H, class Ends>
-    void arrive(TreeEntryT<P, S> e, const H& h, FifoList<TreeEntryT<P, S>>& list, Ends& ends) {
-        absorb(e, h, ends);
-        if constexpr (!kPacketOf<S>) {
-            if (ends.intercept(*this, e, hit_of(h), list)) return;
-        }
-        expand(e, h, list, ends);
-    }
-
-    // ②③④ the interaction at hit h of one ray: a leaf goes to the callback, branches to
-    // the list (the band's index `band_ior`, 0: the material's own).
-    template <class Ends>
-    void expand(const Entry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
-        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior, false, e.wave, ends.wavelength(e),
-                                                std::is_same_v<P, EyeStokes>);
-        if (in.leaf) {
-            ends.leaf(e, h);
-            return;
-        }
-        for (int b = 0; b < in.branches; ++b) push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list);
-    }
-
     // ⑥ a child along branch b of `in` with the parent's attenuation times the branch's
     // factor (and `tint`, a band's weight), unless the threshold or a limit drops it.
     // True when it was added.
@@ -386,6 +361,31 @@ public:
     };
 
 private:
+    // Entry e's ray has met its first surface(s) at h (found by the walk, or once for several
+    // entries along the same ray: the far field's wavelengths of one photon): Beer–Lambert
+    // over the segment inside, then the callback's intercept, then the node.
+    template <class S, class H, class Ends>
+    void arrive(TreeEntryT<P, S> e, const H& h, FifoList<TreeEntryT<P, S>>& list, Ends& ends) {
+        absorb(e, h, ends);
+        if constexpr (!kPacketOf<S>) {
+            if (ends.intercept(*this, e, hit_of(h), list)) return;
+        }
+        expand(e, h, list, ends);
+    }
+
+    // ②③④ the interaction at hit h of one ray: a leaf goes to the callback, branches to
+    // the list (the band's index `band_ior`, 0: the material's own).
+    template <class Ends>
+    void expand(const Entry& e, const SurfaceHit& h, double band_ior, List& list, Ends& ends) {
+        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior, false, e.wave, ends.wavelength(e),
+                                                std::is_same_v<P, EyeStokes>);
+        if (in.leaf) {
+            ends.leaf(e, h);
+            return;
+        }
+        for (int b = 0; b < in.branches; ++b) push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list);
+    }
+
     // Lists for band walks, one per level of nesting (a band walk's RGB mirror ray may split
     // again), reused so that they allocate only while they grow.
     template <class L>
