@@ -295,6 +295,11 @@ struct HitSearch::LaneSearch {
     }
 };
 
+template <class OtherShape>
+void HitSearch::lanes_on(const OtherShape&, size_t k, LaneSearch& q) const {
+    lanes_one_by_one(k, q.active, q);
+}
+
 HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
                                                const LaneOrigins& from, RenderStats& stats) const {
     LaneSearch q{origin, dir, active, from, stats, t_min_, spheres_ ? &*spheres_ : nullptr, {}, Lanes(t_max_), {}, {}, {}, {}};
@@ -391,7 +396,6 @@ void HitSearch::lanes_on(const Plane& p, size_t k, LaneSearch& q) const {
     q.take(k, h.hit, h, order_[k]);
 }
 
-void HitSearch::lanes_on(const TriangleMesh&, size_t k, LaneSearch& q) const { lanes_one_by_one(k, q.active, q); }
 
 void HitSearch::lanes_on(const ConvexPolyhedron& c, size_t k, LaneSearch& q) const {
     LaneMask rest = q.active;

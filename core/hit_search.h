@@ -115,12 +115,15 @@ private:
         return from.object >= 0 ? order_of_[static_cast<size_t>(from.object)] : SIZE_MAX;
     }
 
-    // intersect_lanes on one object k of the in-order search, one overload per shape.
+    // intersect_lanes on one object k of the in-order search: the shapes with a lane kernel
+    // (spheres, planes) or facet-local packets (plane sets) by their overload; any other
+    // shape (meshes, through Embree or the linear search) lane by lane, the exact answer.
     struct LaneSearch;
     void lanes_on(const Sphere& s, size_t k, LaneSearch& q) const;
     void lanes_on(const Plane& p, size_t k, LaneSearch& q) const;
     void lanes_on(const ConvexPolyhedron& c, size_t k, LaneSearch& q) const;
-    void lanes_on(const TriangleMesh& m, size_t k, LaneSearch& q) const;
+    template <class OtherShape>
+    void lanes_on(const OtherShape&, size_t k, LaneSearch& q) const;
     void lanes_one_by_one(size_t k, const LaneMask& lanes, LaneSearch& q) const;
 
     const Scene& scene_;

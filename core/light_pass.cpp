@@ -116,21 +116,19 @@ struct PhotonEnds {
     }
 };
 
-// The illumination map each shape gets: planes (a square under the transparent objects)
-// and meshes; none for spheres and polyhedra.
-std::unique_ptr<IlluminationMap> map_for(const Plane& p, const Vec3& centre, double half, double element) {
-    return std::make_unique<IlluminationMap>(IlluminationMap::for_plane(p, centre, half, element));
+// The illumination map of each kind of surface a shape offers (geometry/shapes.h
+// map_surface): a square of a plane under the transparent objects, a mesh's triangles.
+std::unique_ptr<IlluminationMap> map_for(std::monostate, const Vec3&, double, double) { return nullptr; }
+std::unique_ptr<IlluminationMap> map_for(const Plane* p, const Vec3& centre, double half, double element) {
+    return std::make_unique<IlluminationMap>(IlluminationMap::for_plane(*p, centre, half, element));
 }
-std::unique_ptr<IlluminationMap> map_for(const TriangleMesh& m, const Vec3&, double, double element) {
-    return std::make_unique<IlluminationMap>(IlluminationMap::for_mesh(m, element));
+std::unique_ptr<IlluminationMap> map_for(const TriangleMesh* m, const Vec3&, double, double element) {
+    return std::make_unique<IlluminationMap>(IlluminationMap::for_mesh(*m, element));
 }
-std::unique_ptr<IlluminationMap> map_for(const Sphere&, const Vec3&, double, double) { return nullptr; }
-std::unique_ptr<IlluminationMap> map_for(const ConvexPolyhedron&, const Vec3&, double, double) { return nullptr; }
 
-double elements_for(const Plane&, double half, double element) { return IlluminationMap::plane_elements(half, element); }
-double elements_for(const TriangleMesh& m, double, double element) { return IlluminationMap::mesh_elements(m, element); }
-double elements_for(const Sphere&, double, double) { return 0; }
-double elements_for(const ConvexPolyhedron&, double, double) { return 0; }
+double elements_for(std::monostate, double, double) { return 0; }
+double elements_for(const Plane*, double half, double element) { return IlluminationMap::plane_elements(half, element); }
+double elements_for(const TriangleMesh* m, double, double element) { return IlluminationMap::mesh_elements(*m, element); }
 
 // The maps' square region: centred on the transparent objects, half-size region × extent.
 struct MapRegion {
@@ -157,8 +155,8 @@ double illumination_elements(const Scene& scene) {
     double total = 0;
     for (const Object& o : scene.objects)
         if (lit_surface(scene.materials[static_cast<size_t>(o.material)]))
-            total += std::visit([&](const auto& shape) { return elements_for(shape, region.half, lp.element_size); },
-                                o.shape);
+            total += std::visit([&](const auto& surface) { return elements_for(surface, region.half, lp.element_size); },
+                                map_surface(o.shape));
     return total;
 }
 
@@ -179,7 +177,8 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
         if (!lit_surface(m)) continue;
         try {
             maps->by_object[k] = std::visit(
-                [&](const auto& shape) { return map_for(shape, centre, region.half, lp.element_size); }, o.shape);
+                [&](const auto& surface) { return map_for(surface, centre, region.half, lp.element_size); },
+                map_surface(o.shape));
         } catch (const InputError& e) {
             throw InputError((scene.source.empty() ? std::string("scene") : scene.source) + ": " + e.what() +
                              " (object '" + o.name + "')");

@@ -329,4 +329,12 @@ std::vector<Vec3> vertices(const Shape& s) {
     return std::visit([](const auto& x) { return vertices(x); }, s);
 }
 
+MapSurface map_surface(const Sphere&) { return {}; }
+MapSurface map_surface(const Plane& p) { return &p; }
+MapSurface map_surface(const TriangleMesh& m) { return &m; }
+MapSurface map_surface(const ConvexPolyhedron&) { return {}; }
+MapSurface map_surface(const Shape& s) {
+    return std::visit([](const auto& x) { return map_surface(x); }, s);
+}
+
 }  // namespace refract

@@ -142,6 +142,16 @@ std::vector<Vec3> vertices(const TriangleMesh& m);
 std::vector<Vec3> vertices(const ConvexPolyhedron& c);
 std::vector<Vec3> vertices(const Shape& s);
 
+// The surface an illumination map can cover (core/illumination_map.h, the light pass's
+// caustics): none, a plane (a square under the transparent objects) or a triangle mesh (its
+// triangles). A shape that should receive caustics says which here.
+using MapSurface = std::variant<std::monostate, const Plane*, const TriangleMesh*>;
+MapSurface map_surface(const Sphere& s);
+MapSurface map_surface(const Plane& p);
+MapSurface map_surface(const TriangleMesh& m);
+MapSurface map_surface(const ConvexPolyhedron& c);
+MapSurface map_surface(const Shape& s);
+
 // A bounded convex polyhedron as a closed triangle mesh: its corners once each, every
 // face fanned from one corner, counter-clockwise seen from outside (the same solid for
 // renderers that take meshes, e.g. POV-Ray's mesh2). Empty when unbounded.

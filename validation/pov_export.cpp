@@ -493,7 +493,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
                                       "starts such rays inside it and drops Fresnel reflection at glass exits)");
         o << "// " << comment_text(obj.name) << " (" << comment_text(m.name) << ")\n";
         o << shape(sh) << (c == Containment::Inside ? " inverse" : "") << " " << texture(m);
-        if (m.is<material::Emissive>()) o << " no_shadow";  // a highlight sphere, not an occluder
+        if (!casts_shadow(m)) o << " no_shadow";  // a highlight sphere, not an occluder
         o << " }\n";
     }
     const std::string target = opt.photons ? " photons { target refraction on reflection on }" : "";
