@@ -2,19 +2,22 @@
 # refract's one set-up script (Debian 12, as root or with sudo):
 #   bash run.sh reproduce   install what is missing, build, reproduce every figure and
 #                           the validation report into out/ (open out/index.html)
-#   bash run.sh test        install what is missing, build, run the test suite (ctest)
+#   bash run.sh test        install what is missing, build, run the test suite (ctest), then
+#                           the sanitizer build and its tests, and the fuzzing build
 #   bash run.sh build       install and build only
 #   bash run.sh sanitize    the sanitizer build (gcc, ASan, UBSan) of geometry/, core/ and
 #                           their tests in build-sanitize/, and those tests
 #                           (part of `test`; REFRACT_SKIP_SANITIZE=1 leaves it out)
 #   bash run.sh fuzz [S]    build the libFuzzer target (clang, ASan, UBSan) in build-fuzz/ and
-#                           fuzz the scene reader and a tiny render for S seconds (60)
+#                           fuzz the scene reader and a tiny render for S seconds (60); its
+#                           build is part of `test`, so that it cannot rot
+#                           (REFRACT_SKIP_FUZZ_BUILD=1 leaves it out)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
           libopenimageio-dev openimageio-tools libtbb-dev nlohmann-json3-dev libcli11-dev catch2
-          gnuplot-nox povray libembree-dev python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest
+          libxsimd-dev gnuplot-nox povray libembree-dev python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest
           python3-matplotlib openmpi-bin libopenmpi-dev)
 
 install_missing() {
@@ -40,6 +43,17 @@ sanitize() {
     ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -L sanitize
 }
 
+# The fuzzing build (build-fuzz/, clang): the libFuzzer target, with geometry/ and core/
+# instrumented for it and built with AddressSanitizer and UndefinedBehaviorSanitizer. Clang
+# and its runtime libraries are installed only here.
+fuzz_build() {
+    PACKAGES+=(clang libclang-rt-14-dev)
+    install_missing
+    CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREFRACT_FUZZ=ON \
+        -DREFRACT_BUILD_TESTS=OFF >/dev/null
+    cmake --build build-fuzz -j "$(nproc)" --target scene_fuzzer
+}
+
 build() {
     cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
     cmake --build build -j "$(nproc)"
@@ -57,6 +71,7 @@ case "${1:-}" in
         build
         ctest --test-dir build --output-on-failure -j "$(nproc)"
         [ "${REFRACT_SKIP_SANITIZE:-0}" = 1 ] || sanitize
+        [ "${REFRACT_SKIP_FUZZ_BUILD:-0}" = 1 ] || fuzz_build
         ;;
     sanitize)
         install_missing
@@ -67,11 +82,7 @@ case "${1:-}" in
         build
         ;;
     fuzz)
-        PACKAGES+=(clang libclang-rt-14-dev)
-        install_missing
-        CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREFRACT_FUZZ=ON \
-            -DREFRACT_BUILD_TESTS=OFF >/dev/null
-        cmake --build build-fuzz -j "$(nproc)" --target scene_fuzzer
+        fuzz_build
         mkdir -p build-fuzz/corpus build-fuzz/findings
         ./build-fuzz/fuzz/scene_fuzzer -max_total_time="${2:-60}" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
             -artifact_prefix=build-fuzz/findings/ build-fuzz/corpus scenes/examples scenes/validation

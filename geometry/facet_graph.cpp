@@ -1,8 +1,12 @@
 #include "geometry/facet_graph.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+
+#include "geometry/plane_set.h"
+#include "geometry/simd.h"
 
 namespace refract {
 
@@ -24,50 +28,33 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
     return out;
 }
 
-// Whether one of the n planes (coordinates in arrays, their indices as doubles) contradicts
-// the candidate leaving hit at t_g on plane g for ray r (FacetGraph::intersect). The
-// arithmetic is the slab loop's; the loop is vectorised for AVX-512F, AVX2 or the
-// baseline, chosen at load time (target clones).
-[[gnu::target_clones("avx512f", "avx2", "default")]] bool contradicts(const double* nx, const double* ny,
-                                                                       const double* nz, const double* d,
-                                                                       const double* index, size_t n, const Ray& r,
-                                                                       double t_min, double t_g, double g) {
-    const double dx = r.dir.x(), dy = r.dir.y(), dz = r.dir.z();
-    const double ox = r.origin.x(), oy = r.origin.y(), oz = r.origin.z();
-    int bad = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const double denom = (nx[i] * dx + ny[i] * dy) + nz[i] * dz;
-        const double dist = d[i] - ((nx[i] * ox + ny[i] * oy) + nz[i] * oz);
-        const double t = dist / denom;
-        const bool entering = denom < 0, leaving = denom > 0;
-        const bool parallel = !(entering | leaving), enters_late = !(t <= t_min), before_g = !(t >= t_g),
-                   leaves_early = before_g | ((t == t_g) & (index[i] < g));
-        bad |= static_cast<int>(parallel | (entering & enters_late) | (leaving & leaves_early));
-    }
-    return bad != 0;
+// The test of a block of planes against a candidate hit (FacetGraph::intersect and
+// intersect_lanes): the kernels of geometry/simd/facet_graph.cpp, on the widest vector
+// instructions the CPU runs, or the ones a test asked for (FacetGraph::use_isa).
+using ContradictsFn = decltype(&simd::contradicts<simd::Sse2>);
+using ContradictsLanesFn = decltype(&simd::contradicts_lanes<simd::Sse2>);
+struct Kernels {
+    ContradictsFn one;
+    ContradictsLanesFn lanes;
+};
+Kernels kernels_for(SlabIsa isa) {
+    return {simd::variant<ContradictsFn>(isa, simd::contradicts<simd::Sse2>, simd::contradicts<simd::Avx2>,
+                                         simd::contradicts<simd::Avx512f>),
+            simd::variant<ContradictsLanesFn>(isa, simd::contradicts_lanes<simd::Sse2>,
+                                              simd::contradicts_lanes<simd::Avx2>,
+                                              simd::contradicts_lanes<simd::Avx512f>)};
 }
-
-// The same test on kLanes rays at once: the lanes of `mask` (1) whose candidate t_g[l] on
-// plane g[l] one of the n planes contradicts get bad[l] = 1. The arithmetic is
-// contradicts()'s, lane by lane.
-[[gnu::target_clones("avx512f", "avx2", "default")]] void contradicts_lanes(
-    const double* nx, const double* ny, const double* nz, const double* d, const double* index, size_t n,
-    const double* ox, const double* oy, const double* oz, const double* dx, const double* dy, const double* dz,
-    double t_min, const double* t_g, const double* g, const std::int64_t* mask, std::int64_t* bad) {
-    std::int64_t b[kLanes];
-    for (int l = 0; l < kLanes; ++l) b[l] = 0;
-    for (size_t i = 0; i < n; ++i) {
-        for (int l = 0; l < kLanes; ++l) {
-            const double denom = (nx[i] * dx[l] + ny[i] * dy[l]) + nz[i] * dz[l];
-            const double dist = d[i] - ((nx[i] * ox[l] + ny[i] * oy[l]) + nz[i] * oz[l]);
-            const double t = dist / denom;
-            const bool entering = denom < 0, leaving = denom > 0;
-            const bool parallel = !(entering | leaving), enters_late = !(t <= t_min), before_g = !(t >= t_g[l]),
-                       leaves_early = before_g | ((t == t_g[l]) & (index[i] < g[l]));
-            b[l] |= static_cast<std::int64_t>(parallel | (entering & enters_late) | (leaving & leaves_early));
-        }
-    }
-    for (int l = 0; l < kLanes; ++l) bad[l] |= b[l] & mask[l];
+std::atomic<ContradictsFn> one_in_use{nullptr};
+std::atomic<ContradictsLanesFn> lanes_in_use{nullptr};
+ContradictsFn contradicts_fn() {
+    ContradictsFn f = one_in_use.load(std::memory_order_relaxed);
+    if (!f) one_in_use.store(f = kernels_for(slab_isa()).one, std::memory_order_relaxed);
+    return f;
+}
+ContradictsLanesFn contradicts_lanes_fn() {
+    ContradictsLanesFn f = lanes_in_use.load(std::memory_order_relaxed);
+    if (!f) lanes_in_use.store(f = kernels_for(slab_isa()).lanes, std::memory_order_relaxed);
+    return f;
 }
 
 }  // namespace
@@ -174,6 +161,12 @@ FacetGraph::FacetGraph(const ConvexPolyhedron& c) {
     }
 }
 
+void FacetGraph::use_isa(SlabIsa isa) {
+    const Kernels k = kernels_for(isa);
+    one_in_use.store(k.one, std::memory_order_relaxed);
+    lanes_in_use.store(k.lanes, std::memory_order_relaxed);
+}
+
 FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r, double t_min, double t_max, int from,
                                         int guess) const {
     Local out;
@@ -200,10 +193,12 @@ FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r,
     // No plane around `from` or `guess` may contradict it: an entering plane's t past the
     // window's start, a leaving plane's t before t_g or equal to it with a smaller index,
     // a plane parallel to the ray.
+    const double o[3] = {r.origin.x(), r.origin.y(), r.origin.z()};
+    const double v[3] = {r.dir.x(), r.dir.y(), r.dir.z()};
     for (const int f : {from, guess}) {
         const Block& b = blocks_[static_cast<size_t>(f)];
-        if (contradicts(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), b.nx.size(), r, t_min, t_g,
-                        static_cast<double>(guess)))
+        if (contradicts_fn()(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), b.nx.size(), o, v,
+                             t_min, t_g, static_cast<double>(guess)))
             return out;
     }
     out.decided = true;
@@ -211,9 +206,7 @@ FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r,
     return out;
 }
 
-// The packet's arithmetic vectorised for AVX-512F, AVX2 or the baseline, chosen at load time
-// (target clones; no contraction into FMA in this file, so every variant gives the same bits).
-[[gnu::target_clones("avx512f", "avx2", "default")]] FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& v,
+FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& v,
                                                    const LaneMask& active, double t_min, const Lanes& t_max, int from,
                                                    const std::array<std::int32_t, kLanes>& guess) const {
     LocalLanes out;
@@ -265,38 +258,29 @@ FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r,
     const Lanes t_g = (dg - ng.dot(o)) / denom_g;
     cand = cand && (denom_g > Lanes(0.0)) && (t_g > Lanes(t_min));
     if (!cand.any()) return out;
-    alignas(64) std::int64_t mask[kLanes], bad[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-        mask[l] = cand[l] ? 1 : 0;
-        bad[l] = 0;
-    }
     // The lanes of m against the first n planes of f's block (vectorised over the lanes: no
-    // padding).
-    const auto test = [&](int f, size_t n, const std::int64_t* m) {
+    // padding): those it contradicts.
+    const auto contradicted = [&](int f, size_t n, std::uint32_t m) {
         const Block& b = blocks_[static_cast<size_t>(f)];
-        contradicts_lanes(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), n, o.x.v, o.y.v, o.z.v,
-                          v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m, bad);
+        return contradicts_lanes_fn()(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), n, o.x.v,
+                                      o.y.v, o.z.v, v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m);
     };
-    test(from, blocks_[static_cast<size_t>(from)].neighbours + 1, mask);
+    std::uint32_t bad = contradicted(from, blocks_[static_cast<size_t>(from)].neighbours + 1, cand.bits);
     // Each guess's block, for the lanes that took it: its neighbours (g's own plane gives
     // t_g itself, the same arithmetic, which never contradicts it).
-    std::int64_t done[kLanes] = {};
-    for (int l = 0; l < kLanes; ++l) {
-        if (!mask[l] || done[l]) continue;
-        const int g = guess[static_cast<size_t>(l)];
-        std::int64_t same[kLanes];
-        for (int k = 0; k < kLanes; ++k) {
-            same[k] = mask[k] && !done[k] && guess[static_cast<size_t>(k)] == g ? 1 : 0;
-            done[k] |= same[k];
-        }
-        test(g, blocks_[static_cast<size_t>(g)].neighbours, same);
+    for (std::uint32_t left = cand.bits; left != 0;) {
+        const int g = guess[static_cast<size_t>(__builtin_ctz(left))];
+        std::uint32_t same = 0;
+        for (int k = 0; k < kLanes; ++k) same |= ((left >> k) & 1u) && guess[static_cast<size_t>(k)] == g ? 1u << k : 0u;
+        left &= ~same;
+        bad |= contradicted(g, blocks_[static_cast<size_t>(g)].neighbours, same);
     }
-    for (int l = 0; l < kLanes; ++l) {
-        if (!mask[l] || bad[l]) continue;
-        out.decided[l] = true;
-        out.hit[l] = t_g[l] < t_max[l];
-        out.facet[static_cast<size_t>(l)] = guess[static_cast<size_t>(l)];
-    }
+    LaneMask ok;
+    ok.bits = cand.bits & ~bad;
+    out.decided = out.decided || ok;
+    out.hit = ok && (t_g < t_max);
+    for (int l = 0; l < kLanes; ++l)
+        if (ok[l]) out.facet[static_cast<size_t>(l)] = guess[static_cast<size_t>(l)];
     out.t = t_g;
     out.point = o + t_g * v;
     return out;

@@ -23,15 +23,17 @@
 // is not used (its rays take the full pass).
 //
 // The arithmetic of each plane is the slab loop's ((n_x v_x + n_y v_y) + n_z v_z, d − n·o,
-// their quotient) without contraction into FMA (the file is compiled with
+// their quotient) without contraction into FMA (the files are compiled with
 // -ffp-contract=off), so equal inputs give equal bits; the test over a facet's planes is
-// vectorised (AVX-512F, AVX2 or baseline, chosen at load time).
+// vectorised (geometry/simd/facet_graph.cpp: AVX-512F, AVX2 or the SSE2 baseline, the best
+// the CPU runs, chosen at run time).
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "geometry/lanes.h"
+#include "geometry/plane_set.h"
 #include "geometry/shapes.h"
 
 namespace refract {
@@ -42,6 +44,10 @@ public:
     // within c's bounding sphere (one is found from the polygons when c has none). When c
     // is unbounded no facet is usable.
     explicit FacetGraph(const ConvexPolyhedron& c);
+    // Every facet graph of the process from now on runs this variant of its vectorised test
+    // (an unsupported one: the baseline); by default the best the CPU runs (tests compare
+    // the variants).
+    static void use_isa(SlabIsa isa);
 
     int facets() const { return static_cast<int>(neighbours_.size()); }
     bool usable(int f) const { return f >= 0 && f < facets() && usable_[static_cast<size_t>(f)]; }

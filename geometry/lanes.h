@@ -6,12 +6,15 @@
 // scalar code's: the same IEEE operations in the same order (LaneVec3's dot and squared norm
 // add x, y and z left to right, as Eigen's 3-vectors do). Lanes that are not in use carry
 // whatever their arithmetic gives (NaN included) and are masked by the caller. The loops
-// over lanes are plain, for the compiler to vectorise; every operation is forced inline.
+// over lanes are plain, for the compiler to vectorise; comparisons, blends and square roots
+// take two lanes at a time in xsimd's SSE2 batch (the x86-64 baseline, whatever the flags of
+// the file including this one; geometry/simd.h says why xsimd); every operation is forced
+// inline.
 #include <cmath>
 #include <cstdint>
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <xsimd/xsimd.hpp>
 #endif
 
 #include "geometry/ray.h"
@@ -21,6 +24,34 @@
 namespace refract {
 
 constexpr int kLanes = 8;
+
+#if defined(__SSE2__)
+namespace lanes_sse2 {
+// Two lanes: lanes i and i + 1 of a packet.
+using Pair = xsimd::batch<double, xsimd::sse2>;
+using PairMask = xsimd::batch_bool<double, xsimd::sse2>;
+using PairInts = xsimd::batch<std::int64_t, xsimd::sse2>;
+// The bits of W lanes from the masks of their pairs, cmp(i) for lanes i, i + 1: each pair's
+// lanes weighted 2^i and 2^(i+1) where set, summed as integers.
+template <int W, class Compare>
+REFRACT_LANE_OP std::uint32_t bits(Compare cmp) {
+    static_assert(W % 2 == 0 && W <= 32, "lanes in pairs, one bit each");
+    const auto weighted = [&](int i) {
+        return xsimd::select(xsimd::bool_cast(cmp(i)), PairInts{std::int64_t{1} << i, std::int64_t{2} << i},
+                             PairInts(0));
+    };
+    PairInts sum = weighted(0);
+    for (int i = 2; i < W; i += 2) sum = sum + weighted(i);
+    return static_cast<std::uint32_t>(xsimd::hadd(sum));
+}
+// The mask of a pair of lanes from its two bits (an SSE2 mask is all ones in a lane that is
+// set, all zeros in one that is not).
+alignas(16) inline constexpr std::int64_t kPair[4][2] = {{0, 0}, {-1, 0}, {0, -1}, {-1, -1}};
+REFRACT_LANE_OP PairMask pair_mask(std::uint32_t two_bits) {
+    return PairMask(Pair::load_aligned(reinterpret_cast<const double*>(kPair[two_bits])));
+}
+}  // namespace lanes_sse2
+#endif
 
 // Which lanes of a packet a statement applies to: one bit per lane (lane i: bit i), so that
 // the tests, the combinations and the counts of a packet step are single instructions.
@@ -106,30 +137,28 @@ struct LanesT {
 #undef REFRACT_LANE_BINARY
 #if defined(__SSE2__)
     // Two lanes a step: the packed comparison (false where either is NaN, as the scalar
-    // operator), its two sign bits into the mask.
-#define REFRACT_LANE_COMPARE(op, packed)                                                     \
-    friend REFRACT_LANE_OP LaneMaskT<W> operator op(const LanesT& a, const LanesT& b) {      \
-        static_assert(W % 2 == 0, "lanes in pairs");                                          \
-        LaneMaskT<W> r;                                                                       \
-        for (int i = 0; i < kLanes; i += 2)                                                   \
-            r.bits |= static_cast<std::uint32_t>(                                             \
-                          _mm_movemask_pd(packed(_mm_load_pd(a.v + i), _mm_load_pd(b.v + i)))) \
-                      << i;                                                                   \
-        return r;                                                                             \
+    // operator), its lanes into the mask's bits.
+#define REFRACT_LANE_COMPARE(op)                                                    \
+    friend REFRACT_LANE_OP LaneMaskT<W> operator op(const LanesT& a, const LanesT& b) {     \
+        using lanes_sse2::Pair;                                                              \
+        LaneMaskT<W> r;                                                                      \
+        r.bits = lanes_sse2::bits<W>(                                                        \
+            [&](int i) { return Pair::load_aligned(a.v + i) op Pair::load_aligned(b.v + i); }); \
+        return r;                                                                            \
     }
-    REFRACT_LANE_COMPARE(<, _mm_cmplt_pd)
-    REFRACT_LANE_COMPARE(>, _mm_cmpgt_pd)
-    REFRACT_LANE_COMPARE(>=, _mm_cmpge_pd)
+    REFRACT_LANE_COMPARE(<)
+    REFRACT_LANE_COMPARE(>)
+    REFRACT_LANE_COMPARE(>=)
 #else
-#define REFRACT_LANE_COMPARE(op, packed)                                                \
+#define REFRACT_LANE_COMPARE(op)                                                \
     friend REFRACT_LANE_OP LaneMaskT<W> operator op(const LanesT& a, const LanesT& b) { \
         LaneMaskT<W> r;                                                                    \
         for (int i = 0; i < kLanes; ++i) r.bits |= static_cast<std::uint32_t>(a.v[i] op b.v[i]) << i; \
         return r;                                                                       \
     }
-    REFRACT_LANE_COMPARE(<, _)
-    REFRACT_LANE_COMPARE(>, _)
-    REFRACT_LANE_COMPARE(>=, _)
+    REFRACT_LANE_COMPARE(<)
+    REFRACT_LANE_COMPARE(>)
+    REFRACT_LANE_COMPARE(>=)
 #endif
 #undef REFRACT_LANE_COMPARE
     friend REFRACT_LANE_OP LanesT operator-(const LanesT& a) {
@@ -143,7 +172,8 @@ struct LanesT {
         LanesT r;
 #if defined(__SSE2__)
         static_assert(W % 2 == 0, "lanes in pairs");
-        for (int i = 0; i < kLanes; i += 2) _mm_store_pd(r.v + i, _mm_sqrt_pd(_mm_load_pd(a.v + i)));
+        for (int i = 0; i < kLanes; i += 2)
+            xsimd::sqrt(lanes_sse2::Pair::load_aligned(a.v + i)).store_aligned(r.v + i);
 #else
         for (int i = 0; i < kLanes; ++i) r.v[i] = std::sqrt(a.v[i]);
 #endif
@@ -174,12 +204,11 @@ template <int W>
 REFRACT_LANE_OP LanesT<W> select(const LaneMaskT<W>& m, const LanesT<W>& a, const LanesT<W>& b) {
     LanesT<W> r;
 #if defined(__SSE2__)
-    // The blend mask of a pair of lanes from its two bits.
-    alignas(16) static constexpr std::int64_t kPair[4][2] = {{0, 0}, {-1, 0}, {0, -1}, {-1, -1}};
-    for (int i = 0; i < W; i += 2) {
-        const __m128d k = _mm_load_pd(reinterpret_cast<const double*>(kPair[(m.bits >> i) & 3u]));
-        _mm_store_pd(r.v + i, _mm_or_pd(_mm_and_pd(k, _mm_load_pd(a.v + i)), _mm_andnot_pd(k, _mm_load_pd(b.v + i))));
-    }
+    using lanes_sse2::Pair;
+    static_assert(W % 2 == 0, "lanes in pairs");
+    for (int i = 0; i < W; i += 2)
+        xsimd::select(lanes_sse2::pair_mask((m.bits >> i) & 3u), Pair::load_aligned(a.v + i), Pair::load_aligned(b.v + i))
+            .store_aligned(r.v + i);
 #else
     for (int i = 0; i < W; ++i) r.v[i] = m[i] ? a.v[i] : b.v[i];
 #endif

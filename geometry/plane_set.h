@@ -18,10 +18,11 @@
 // The kernel reads `planes` as they are (no copy that could go stale): blocks of W planes
 // are transposed in registers into per-coordinate vectors, each lane keeps its running
 // max/min and plane index, and a final reduction picks the largest (smallest) t and among
-// equal t the smallest index. Variants: AVX-512F (W = 8), AVX2 (W = 4) and baseline
-// x86-64 SSE2 (W = 2); slab_span picks the best one the CPU runs, once (multiversioning by
-// target attributes with run-time CPU detection). On other targets only the baseline
-// variant (GNU vector extensions, GCC or clang) exists.
+// equal t the smallest index. The kernel is written once over xsimd's batch of W doubles
+// (geometry/simd/plane_set.cpp) and compiled per instruction set: AVX-512F (W = 8), AVX2
+// (W = 4) and baseline x86-64 SSE2 (W = 2); slab_span picks the best one the CPU runs, once
+// (geometry/simd.h). On other processors only the baseline variant, for the compiler's
+// default architecture, exists.
 #include <cstddef>
 #include <optional>
 

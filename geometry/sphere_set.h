@@ -1,15 +1,17 @@
 #pragma once
 // The nearest of a list of spheres along one ray, the spheres tested together: their
-// centres and squared radii by coordinate (structure of arrays), the quadratic of every
-// sphere computed in one vectorised pass (AVX-512F, AVX2 or the baseline, chosen at load
-// time by target clones), then the nearest root picked in list order.
+// centres and radii by coordinate (structure of arrays), the quadratic of every sphere
+// computed in one vectorised pass (geometry/simd/sphere_set.cpp: AVX-512F, AVX2 or the SSE2
+// baseline, the best the CPU runs, chosen at run time), then the nearest root picked in
+// list order.
 //
 // The answer is that of intersect(const Sphere&, ...) asked of each sphere in list order
 // with the window narrowed to the best t so far, bit for bit: the same operations in the
-// same order for b, c, the discriminant and the roots (sphere_quadratic; the file is
-// compiled without contraction into FMA, so every variant gives the same bits), the nearer root when it lies in the window, else
-// the farther one, and on equal t the sphere listed first. A negative discriminant gives a
-// NaN root, which no window accepts, as the scalar test's early miss.
+// same order for b, c, the discriminant and the roots (sphere_quadratic itself, on the
+// kernel's batches; the kernels are compiled without contraction into FMA, so every variant
+// gives the same bits), the nearer root when it lies in the window, else the farther one,
+// and on equal t the sphere listed first. A negative discriminant gives a NaN root, which no
+// window accepts, as the scalar test's early miss.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -56,8 +58,8 @@ public:
 
 private:
     std::vector<Sphere> spheres_;
-    // Padded to a multiple of 8 with spheres of NaN squared radius (never a hit).
-    std::vector<double> cx_, cy_, cz_, r2_, r_;
+    // Padded to a multiple of 8 with spheres of NaN radius (never a hit).
+    std::vector<double> cx_, cy_, cz_, r_;
 };
 
 }  // namespace refract

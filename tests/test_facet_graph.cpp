@@ -90,6 +90,14 @@ Comparison compare_from_hits(const ConvexPolyhedron& c, const ConvexPolyhedron& 
     return cmp;
 }
 
+// The variants of the vectorised kernels this CPU runs (FacetGraph::use_isa, use_wide_isa).
+std::vector<SlabIsa> supported_variants() {
+    std::vector<SlabIsa> v;
+    for (const SlabIsa isa : {SlabIsa::baseline, SlabIsa::avx2, SlabIsa::avx512f})
+        if (slab_isa_supported(isa)) v.push_back(isa);
+    return v;
+}
+
 ConvexPolyhedron brilliant() {
     const Gem gem = build_brilliant(BrilliantCut{});
     ConvexPolyhedron c = gem.solid;
@@ -136,13 +144,19 @@ TEST_CASE("Facet-local intersection equals the full plane loop bit for bit on th
             CHECK(g.gap(f) > 100 * g.tolerance());
             CHECK(g.neighbours(f).size() >= 3);
         }
-    const Comparison cmp = compare_from_hits(c, c, 20000, 3);
-    INFO(cmp.rays << " rays, " << cmp.decided << " decided locally");
-    CHECK(cmp.rays > 100000);
-    CHECK(cmp.mismatches == 0);
-    // Outward rays are always decided; inward ones with the right guess nearly always.
-    CHECK(cmp.outward_decided == cmp.outward);
-    CHECK(cmp.decided_right_guess > 0.99 * cmp.right_guesses);
+    // Under every variant of the vectorised plane test the CPU runs.
+    for (const SlabIsa isa : supported_variants()) {
+        INFO(slab_isa_name(isa));
+        FacetGraph::use_isa(isa);
+        const Comparison cmp = compare_from_hits(c, c, 20000, 3);
+        INFO(cmp.rays << " rays, " << cmp.decided << " decided locally");
+        CHECK(cmp.rays > 100000);
+        CHECK(cmp.mismatches == 0);
+        // Outward rays are always decided; inward ones with the right guess nearly always.
+        CHECK(cmp.outward_decided == cmp.outward);
+        CHECK(cmp.decided_right_guess > 0.99 * cmp.right_guesses);
+    }
+    FacetGraph::use_isa(slab_isa());
 }
 
 TEST_CASE("Facet-local intersection equals the full plane loop on rays from the brilliant's vertices and edges", "[geometry]") {
@@ -313,39 +327,45 @@ TEST_CASE("Facet-local intersection of a packet of rays leaving one facet equals
           "[geometry]") {
     // Packets leaving hits on the brilliant's facets, inward and outward, each lane with the
     // right guess, a random one or none: every lane decided as FacetGraph::intersect decides
-    // it, with the same hit to the last bit.
+    // it, with the same hit to the last bit, under every variant of the vectorised plane
+    // test the CPU runs.
     const ConvexPolyhedron c = brilliant();
     const FacetGraph g(c);
-    std::mt19937_64 rng(5);
-    std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
-    long lanes = 0, decided = 0, mismatches = 0;
-    for (int i = 0; i < 6000; ++i) {
-        const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
-        const Vec3 to = c.bound_center + 0.9 * c.bound_radius * random_direction(rng);
-        const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
-        if (!hit || !g.usable(hit->facet)) continue;
-        const Vec3 n = c.planes[static_cast<size_t>(hit->facet)].normal;
-        Vec3 d0 = random_direction(rng);
-        if ((d0.dot(n) > 0) != (i % 4 == 0)) d0 = -d0;  // a quarter outward
-        LaneVec3 o, d;
-        Lanes t_max;
-        LaneMask active;
-        std::array<std::int32_t, kLanes> guess;
-        for (int l = 0; l < kLanes; ++l) {
-            // The wavelengths of a split: nearly the same direction from nearly the same point.
-            const Vec3 dir = (d0 + 0.01 * random_direction(rng)).normalized();
-            o.set(l, hit->point);
-            d.set(l, dir);
-            t_max[l] = l == 6 ? 0.05 : kInf;
-            active[l] = l != 3 || i % 2 == 0;
-            const auto want = intersect(c, Ray{hit->point, dir}, 1e-6, t_max[l]);
-            guess[static_cast<size_t>(l)] = l % 3 == 0 ? -1 : l % 3 == 1 && want ? want->facet : any(rng);
+    for (const SlabIsa isa : supported_variants()) {
+        INFO(slab_isa_name(isa));
+        FacetGraph::use_isa(isa);
+        std::mt19937_64 rng(5);
+        std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
+        long lanes = 0, decided = 0, mismatches = 0;
+        for (int i = 0; i < 6000; ++i) {
+            const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
+            const Vec3 to = c.bound_center + 0.9 * c.bound_radius * random_direction(rng);
+            const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
+            if (!hit || !g.usable(hit->facet)) continue;
+            const Vec3 n = c.planes[static_cast<size_t>(hit->facet)].normal;
+            Vec3 d0 = random_direction(rng);
+            if ((d0.dot(n) > 0) != (i % 4 == 0)) d0 = -d0;  // a quarter outward
+            LaneVec3 o, d;
+            Lanes t_max;
+            LaneMask active;
+            std::array<std::int32_t, kLanes> guess;
+            for (int l = 0; l < kLanes; ++l) {
+                // The wavelengths of a split: nearly the same direction from nearly the same point.
+                const Vec3 dir = (d0 + 0.01 * random_direction(rng)).normalized();
+                o.set(l, hit->point);
+                d.set(l, dir);
+                t_max[l] = l == 6 ? 0.05 : kInf;
+                active[l] = l != 3 || i % 2 == 0;
+                const auto want = intersect(c, Ray{hit->point, dir}, 1e-6, t_max[l]);
+                guess[static_cast<size_t>(l)] = l % 3 == 0 ? -1 : l % 3 == 1 && want ? want->facet : any(rng);
+            }
+            compare_packet(g, c, o, d, active, 1e-6, t_max, hit->facet, guess, lanes, decided, mismatches);
         }
-        compare_packet(g, c, o, d, active, 1e-6, t_max, hit->facet, guess, lanes, decided, mismatches);
+        CHECK(lanes > 20000);
+        CHECK(decided > lanes / 3);
+        CHECK(mismatches == 0);
     }
-    CHECK(lanes > 20000);
-    CHECK(decided > lanes / 3);
-    CHECK(mismatches == 0);
+    FacetGraph::use_isa(slab_isa());
 }
 
 TEST_CASE("Facet-local intersection of packets aimed at the brilliant's corners and edges equals the one-ray answer",
@@ -358,41 +378,46 @@ TEST_CASE("Facet-local intersection of packets aimed at the brilliant's corners 
     ConvexPolyhedron c = gem.solid;
     set_bound(c, gem.mesh.vertices);
     const FacetGraph g(c);
-    std::mt19937_64 rng(9);
-    std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
-    long lanes = 0, decided = 0, mismatches = 0;
-    std::vector<Vec3> targets;
-    for (const GemFacet& f : gem.facets)
-        for (size_t i = 0; i < f.polygon.size(); ++i) {
-            targets.push_back(f.polygon[i]);
-            targets.push_back(0.5 * (f.polygon[i] + f.polygon[(i + 1) % f.polygon.size()]));
+    for (const SlabIsa isa : supported_variants()) {
+        INFO(slab_isa_name(isa));
+        FacetGraph::use_isa(isa);
+        std::mt19937_64 rng(9);
+        std::uniform_int_distribution<int> any(0, static_cast<int>(c.planes.size()) - 1);
+        long lanes = 0, decided = 0, mismatches = 0;
+        std::vector<Vec3> targets;
+        for (const GemFacet& f : gem.facets)
+            for (size_t i = 0; i < f.polygon.size(); ++i) {
+                targets.push_back(f.polygon[i]);
+                targets.push_back(0.5 * (f.polygon[i] + f.polygon[(i + 1) % f.polygon.size()]));
+            }
+        for (size_t i = 0; i < 4 * targets.size(); ++i) {
+            const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
+            const Vec3 to = c.bound_center + 0.5 * c.bound_radius * random_direction(rng);
+            const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
+            if (!hit || !g.usable(hit->facet)) continue;
+            const double t_min = i % 3 == 0 ? 0.0 : 1e-6;
+            LaneVec3 o, d;
+            Lanes t_max;
+            LaneMask active = LaneMask::Constant(true);
+            std::array<std::int32_t, kLanes> guess;
+            for (int l = 0; l < kLanes; ++l) {
+                const Vec3& at = targets[(i + static_cast<size_t>(l) * 7) % targets.size()];
+                Vec3 dir = (at - hit->point).normalized();
+                if (l >= 4) dir = (dir + 1e-13 * random_direction(rng)).normalized();  // beside it
+                o.set(l, hit->point);
+                d.set(l, dir);
+                t_max[l] = kInf;
+                const auto want = intersect(c, Ray{hit->point, dir}, t_min, kInf);
+                guess[static_cast<size_t>(l)] = l % 3 == 2 ? -1 : l % 3 == 0 && want ? want->facet : any(rng);
+            }
+            compare_packet(g, c, o, d, active, t_min, t_max, hit->facet, guess, lanes, decided, mismatches);
         }
-    for (size_t i = 0; i < 4 * targets.size(); ++i) {
-        const Vec3 from = c.bound_center + 3 * c.bound_radius * random_direction(rng);
-        const Vec3 to = c.bound_center + 0.5 * c.bound_radius * random_direction(rng);
-        const auto hit = intersect(c, Ray{from, (to - from).normalized()}, 0, kInf);
-        if (!hit || !g.usable(hit->facet)) continue;
-        const double t_min = i % 3 == 0 ? 0.0 : 1e-6;
-        LaneVec3 o, d;
-        Lanes t_max;
-        LaneMask active = LaneMask::Constant(true);
-        std::array<std::int32_t, kLanes> guess;
-        for (int l = 0; l < kLanes; ++l) {
-            const Vec3& at = targets[(i + static_cast<size_t>(l) * 7) % targets.size()];
-            Vec3 dir = (at - hit->point).normalized();
-            if (l >= 4) dir = (dir + 1e-13 * random_direction(rng)).normalized();  // beside it
-            o.set(l, hit->point);
-            d.set(l, dir);
-            t_max[l] = kInf;
-            const auto want = intersect(c, Ray{hit->point, dir}, t_min, kInf);
-            guess[static_cast<size_t>(l)] = l % 3 == 2 ? -1 : l % 3 == 0 && want ? want->facet : any(rng);
-        }
-        compare_packet(g, c, o, d, active, t_min, t_max, hit->facet, guess, lanes, decided, mismatches);
+        INFO(lanes << " lanes, " << decided << " decided locally");
+        CHECK(lanes > 5000);
+        CHECK(decided > lanes / 4);
+        CHECK(mismatches == 0);
     }
-    INFO(lanes << " lanes, " << decided << " decided locally");
-    CHECK(lanes > 5000);
-    CHECK(decided > lanes / 4);
-    CHECK(mismatches == 0);
+    FacetGraph::use_isa(slab_isa());
 }
 
 TEST_CASE("The plane test on a packet of rays equals the one-ray test in every lane, bit for bit", "[geometry]") {
@@ -430,8 +455,7 @@ TEST_CASE("Normalising a packet on the widest instructions equals Eigen's normal
           "[geometry]") {
     std::mt19937_64 rng(21);
     std::uniform_real_distribution<double> u(-3, 3), scale(-30, 30);
-    for (const SlabIsa isa : {SlabIsa::baseline, SlabIsa::avx2, SlabIsa::avx512f}) {
-        if (!slab_isa_supported(isa)) continue;
+    for (const SlabIsa isa : supported_variants()) {
         INFO(slab_isa_name(isa));
         use_wide_isa(isa);
         long lanes = 0, mismatches = 0;
