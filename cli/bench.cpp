@@ -13,14 +13,14 @@
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
 #include "cli/commands.h"
-#include "core/render.h"
-#include "core/tracer.h"
-#include "experiments/common.h"
-#include "experiments/ohtsuka1998.h"
-#include "geometry/error.h"
-#include "validation/compare.h"
-#include "validation/pov_export.h"
-#include "validation/povray_runner.h"
+#include <refract/core/render.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/ohtsuka1998.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/compare.h>
+#include <refract/validation/pov_export.h>
+#include <refract/validation/povray_runner.h>
 
 namespace {
 

@@ -10,12 +10,12 @@
 
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
-#include "core/tracer.h"
-#include "geometry/facet_graph.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/icosphere.h"
-#include "geometry/mesh_accel.h"
-#include "geometry/plane_set.h"
+#include <refract/core/tracer.h>
+#include <refract/geometry/facet_graph.h>
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/icosphere.h>
+#include <refract/geometry/mesh_accel.h>
+#include <refract/geometry/plane_set.h>
 
 namespace refract::cli::bench {
 

@@ -14,13 +14,13 @@
 
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
-#include "core/image.h"
-#include "core/render.h"
-#include "experiments/common.h"
-#include "experiments/rtiow.h"
-#include "geometry/error.h"
-#include "validation/files.h"
-#include "validation/process.h"
+#include <refract/core/image.h>
+#include <refract/core/render.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/rtiow.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/files.h>
+#include <refract/validation/process.h>
 
 namespace refract::cli::bench {
 

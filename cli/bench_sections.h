@@ -3,7 +3,7 @@
 // paired timings (docs/performance.md).
 #include <string>
 
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract::cli::bench {
 

@@ -14,11 +14,11 @@
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
 #include "cli/sweep_mpi.h"
-#include "experiments/gem_cuts.h"
-#include "experiments/gem_sweep_file.h"
-#include "experiments/plot.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/experiments/gem_cuts.h>
+#include <refract/experiments/gem_sweep_file.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 
 namespace refract::cli::bench {
 

@@ -7,8 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/memory.h"
-#include "core/threads.h"
+#include <refract/core/memory.h>
+#include <refract/core/threads.h>
 
 namespace refract::cli {
 

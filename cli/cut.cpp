@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/gem/gem_io.h"
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/gem/gem_io.h>
 
 namespace {
 

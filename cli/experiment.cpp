@@ -4,9 +4,9 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "experiments/common.h"
-#include "experiments/experiment.h"
-#include "experiments/plot.h"
+#include <refract/experiments/common.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/plot.h>
 
 namespace {
 

@@ -2,8 +2,8 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "core/scene_json.h"
-#include "validation/pov_export.h"
+#include <refract/core/scene_json.h>
+#include <refract/validation/pov_export.h>
 
 namespace {
 

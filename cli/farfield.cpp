@@ -5,12 +5,12 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "core/far_field.h"
-#include "core/scene_json.h"
-#include "experiments/common.h"
-#include "experiments/far_field_output.h"
-#include "experiments/plot.h"
-#include "geometry/error.h"
+#include <refract/core/far_field.h>
+#include <refract/core/scene_json.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/far_field_output.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/error.h>
 
 namespace {
 

@@ -6,8 +6,8 @@
 #include <unistd.h>
 
 #include "cli/commands.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 
 namespace refract::cli {
 

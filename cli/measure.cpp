@@ -7,12 +7,12 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "core/image.h"
-#include "geometry/error.h"
-#include "geometry/format.h"
-#include "validation/compare.h"
-#include "validation/files.h"
-#include "validation/measure.h"
+#include <refract/core/image.h>
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/validation/compare.h>
+#include <refract/validation/files.h>
+#include <refract/validation/measure.h>
 
 namespace {
 

@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "core/polarisation_output.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/tracer.h"
+#include <refract/core/polarisation_output.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/tracer.h>
 
 namespace {
 

@@ -10,11 +10,11 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "experiments/experiment.h"
-#include "experiments/plot.h"
-#include "geometry/error.h"
-#include "validation/files.h"
-#include "validation/suite.h"
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/files.h>
+#include <refract/validation/suite.h>
 
 namespace {
 namespace fs = std::filesystem;

@@ -8,9 +8,9 @@
 
 #include "cli/commands.h"
 #include "cli/sweep_mpi.h"
-#include "experiments/gem_sweep_file.h"
-#include "core/spectrum/dispersion.h"
-#include "geometry/error.h"
+#include <refract/experiments/gem_sweep_file.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/geometry/error.h>
 
 namespace {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 #ifdef REFRACT_HAVE_MPI
 #include <mpi.h>

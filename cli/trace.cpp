@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "core/scene_json.h"
-#include "core/trace_record.h"
-#include "geometry/error.h"
-#include "validation/files.h"
+#include <refract/core/scene_json.h>
+#include <refract/core/trace_record.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/files.h>
 
 namespace {
 

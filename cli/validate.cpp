@@ -7,10 +7,10 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "geometry/error.h"
-#include "validation/caustics.h"
-#include "validation/random_suite.h"
-#include "validation/suite.h"
+#include <refract/geometry/error.h>
+#include <refract/validation/caustics.h>
+#include <refract/validation/random_suite.h>
+#include <refract/validation/suite.h>
 
 namespace {
 

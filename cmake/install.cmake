@@ -1,5 +1,5 @@
 # cmake --install build --prefix P: the libraries, the headers under P/include/refract/
-# (geometry/, core/, validation/, experiments/, so that #include "core/x.h" works), the
+# (geometry/, core/, validation/, experiments/: #include <refract/core/x.h>), the
 # image module, the `refract` executable, the Python package, and the CMake package
 # refract (P/lib/cmake/refract) with the targets refract::geometry, refract::core,
 # refract::validation and refract::experiments.
@@ -13,7 +13,7 @@ foreach(_t IN LISTS _refract_libs)
 endforeach()
 install(TARGETS ${_refract_libs} EXPORT refractTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/refract)
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS refract_image_io LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/refract)
 install(TARGETS refract RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY geometry core validation experiments DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/refract

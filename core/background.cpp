@@ -1,6 +1,6 @@
 // Background::radiance (core/scene.h): what a ray that leaves the scene sees.
-#include "core/environment_map.h"
-#include "core/scene.h"
+#include <refract/core/environment_map.h>
+#include <refract/core/scene.h>
 
 namespace refract {
 

@@ -1,5 +1,5 @@
 // Double refraction at a uniaxial crystal's surface (see birefringence.h, docs/birefringence.md).
-#include "core/birefringence.h"
+#include <refract/core/birefringence.h>
 
 #include <cmath>
 

@@ -23,8 +23,8 @@
 
 #include <Eigen/Core>
 
-#include "core/polarisation.h"
-#include "geometry/ray.h"
+#include <refract/core/polarisation.h>
+#include <refract/geometry/ray.h>
 
 namespace refract::biref {
 

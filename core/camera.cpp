@@ -1,4 +1,4 @@
-#include "core/camera.h"
+#include <refract/core/camera.h>
 
 #include <cmath>
 

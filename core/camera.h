@@ -2,7 +2,7 @@
 // Camera, mapping pixel (i, j) to a primary ray exactly as POV-Ray 3.7 does with
 // antialiasing off (tracepixel.cpp CreateCameraRay): x0 = (i+0.5)/W − 0.5,
 // y0 = 0.5 − (j+0.5)/H, dir = normalize(D + x0·R + y0·U); row j = 0 is the top.
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

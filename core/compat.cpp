@@ -1,14 +1,14 @@
-#include "core/compat.h"
+#include <refract/core/compat.h>
 
 #include <cmath>
 #include <limits>
 
-#include "core/hit_search.h"
-#include "core/integrators/spectral.h"
-#include "core/render_stats.h"
-#include "core/scene.h"
-#include "core/spectrum/cie.h"
-#include "geometry/error.h"
+#include <refract/core/hit_search.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/render_stats.h>
+#include <refract/core/scene.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/interaction.h"
-#include "core/material.h"
-#include "core/compat/povray.h"
-#include "core/random.h"
+#include <refract/core/interaction.h>
+#include <refract/core/material.h>
+#include <refract/core/compat/povray.h>
+#include <refract/core/random.h>
 
 namespace refract {
 

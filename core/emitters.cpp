@@ -1,10 +1,10 @@
-#include "core/emitters.h"
+#include <refract/core/emitters.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/environment_map.h"
-#include "geometry/error.h"
+#include <refract/core/environment_map.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

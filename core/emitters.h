@@ -16,9 +16,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/polarisation_state.h"
-#include "core/random.h"
-#include "core/scene.h"
+#include <refract/core/polarisation_state.h>
+#include <refract/core/random.h>
+#include <refract/core/scene.h>
 
 namespace refract {
 

@@ -1,11 +1,11 @@
-#include "core/environment_map.h"
+#include <refract/core/environment_map.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "core/image.h"
-#include "geometry/error.h"
+#include <refract/core/image.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 namespace {

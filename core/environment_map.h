@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

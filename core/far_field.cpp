@@ -1,4 +1,4 @@
-#include "core/far_field.h"
+#include <refract/core/far_field.h>
 
 #include <algorithm>
 #include <chrono>
@@ -11,12 +11,12 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "core/emitters.h"
-#include "core/integrators/spectral.h"
-#include "core/ray_tree.h"
-#include "geometry/error.h"
-#include "core/memory.h"
-#include "core/threads.h"
+#include <refract/core/emitters.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/ray_tree.h>
+#include <refract/geometry/error.h>
+#include <refract/core/memory.h>
+#include <refract/core/threads.h>
 
 namespace refract {
 

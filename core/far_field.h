@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "core/trace_options.h"
-#include "core/scene.h"
+#include <refract/core/trace_options.h>
+#include <refract/core/scene.h>
 
 namespace refract {
 

@@ -1,11 +1,11 @@
-#include "core/hit_search.h"
+#include <refract/core/hit_search.h>
 
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
-#include "core/material.h"
+#include <refract/core/material.h>
 
 namespace refract {
 

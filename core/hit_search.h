@@ -12,15 +12,15 @@
 #include <optional>
 #include <vector>
 
-#include "core/compat.h"
-#include "core/interaction.h"
-#include "core/render_stats.h"
-#include "core/scene.h"
-#include "core/trace_options.h"
-#include "geometry/facet_graph.h"
-#include "geometry/mesh_accel.h"
-#include "geometry/object_bvh.h"
-#include "geometry/sphere_set.h"
+#include <refract/core/compat.h>
+#include <refract/core/interaction.h>
+#include <refract/core/render_stats.h>
+#include <refract/core/scene.h>
+#include <refract/core/trace_options.h>
+#include <refract/geometry/facet_graph.h>
+#include <refract/geometry/mesh_accel.h>
+#include <refract/geometry/object_bvh.h>
+#include <refract/geometry/sphere_set.h>
 
 namespace refract {
 

@@ -1,10 +1,10 @@
-#include "core/illumination_map.h"
+#include <refract/core/illumination_map.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract {
 

@@ -25,7 +25,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/scene.h"
+#include <refract/core/scene.h>
 
 namespace refract {
 

@@ -1,4 +1,4 @@
-#include "core/image.h"
+#include <refract/core/image.h>
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "core/image_io.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/core/image_io.h>
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

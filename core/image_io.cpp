@@ -1,4 +1,4 @@
-#include "core/image_io.h"
+#include <refract/core/image_io.h>
 
 #include <dlfcn.h>
 #include <cstdlib>
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract {
 namespace {

@@ -1,6 +1,6 @@
-#include "core/interaction.h"
+#include <refract/core/interaction.h>
 
-#include "core/material.h"
+#include <refract/core/material.h>
 
 namespace refract {
 

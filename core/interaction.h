@@ -13,12 +13,12 @@
 #include <type_traits>
 #include <utility>
 
-#include "core/birefringence.h"
-#include "core/optics.h"
-#include "core/polarisation.h"
-#include "core/random.h"
-#include "geometry/shapes.h"
-#include "geometry/width.h"
+#include <refract/core/birefringence.h>
+#include <refract/core/optics.h>
+#include <refract/core/polarisation.h>
+#include <refract/core/random.h>
+#include <refract/geometry/shapes.h>
+#include <refract/geometry/width.h>
 
 namespace refract {
 

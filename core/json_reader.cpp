@@ -1,4 +1,4 @@
-#include "core/json_reader.h"
+#include <refract/core/json_reader.h>
 
 #include <cmath>
 

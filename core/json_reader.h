@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/error.h"
-#include "geometry/ray.h"
+#include <refract/geometry/error.h>
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

@@ -1,4 +1,4 @@
-#include "core/light_pass.h"
+#include <refract/core/light_pass.h>
 
 #include <atomic>
 #include <chrono>
@@ -9,10 +9,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "core/emitters.h"
-#include "geometry/error.h"
-#include "core/ray_tree.h"
-#include "core/threads.h"
+#include <refract/core/emitters.h>
+#include <refract/geometry/error.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/threads.h>
 
 namespace refract {
 

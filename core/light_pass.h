@@ -16,9 +16,9 @@
 #include <atomic>
 #include <memory>
 
-#include "core/illumination_map.h"
-#include "core/integrators/spectral.h"
-#include "core/trace_options.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/trace_options.h>
 
 namespace refract {
 

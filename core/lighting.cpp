@@ -1,4 +1,4 @@
-#include "core/lighting.h"
+#include <refract/core/lighting.h>
 
 namespace refract {
 

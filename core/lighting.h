@@ -3,10 +3,10 @@
 // directional and beam lights, POV-Ray's convention (ambient·pigment + Σ diffuse·pigment·
 // light·max(0, N·L)·shadow), with shadow rays by the policy's rule
 // (CompatRules::light_transmittance).
-#include "core/compat.h"
-#include "core/hit_search.h"
-#include "core/render_stats.h"
-#include "core/scene.h"
+#include <refract/core/compat.h>
+#include <refract/core/hit_search.h>
+#include <refract/core/render_stats.h>
+#include <refract/core/scene.h>
 
 namespace refract {
 

@@ -10,13 +10,13 @@
 #include <string>
 #include <variant>
 
-#include "core/materials/dielectric.h"
-#include "core/materials/diffuse.h"
-#include "core/materials/emissive.h"
-#include "core/materials/lambertian.h"
-#include "core/materials/metal.h"
-#include "core/materials/mirror.h"
-#include "core/materials/uniaxial.h"
+#include <refract/core/materials/dielectric.h>
+#include <refract/core/materials/diffuse.h>
+#include <refract/core/materials/emissive.h>
+#include <refract/core/materials/lambertian.h>
+#include <refract/core/materials/metal.h>
+#include <refract/core/materials/mirror.h>
+#include <refract/core/materials/uniaxial.h>
 
 namespace refract {
 

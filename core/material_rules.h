@@ -31,12 +31,12 @@
 #include <type_traits>
 #include <utility>
 
-#include "core/interaction.h"
-#include "core/json_reader.h"
-#include "core/materials/pigment.h"
-#include "core/random.h"
-#include "core/spectrum/absorption.h"
-#include "core/spectrum/dispersion.h"
+#include <refract/core/interaction.h>
+#include <refract/core/json_reader.h>
+#include <refract/core/materials/pigment.h>
+#include <refract/core/random.h>
+#include <refract/core/spectrum/absorption.h>
+#include <refract/core/spectrum/dispersion.h>
 
 namespace refract {
 

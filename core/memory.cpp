@@ -1,4 +1,4 @@
-#include "core/memory.h"
+#include <refract/core/memory.h>
 
 #include <algorithm>
 #include <cctype>
@@ -7,10 +7,10 @@
 
 #include <unistd.h>
 
-#include "core/light_pass.h"
-#include "core/render.h"
-#include "core/spectrum/wavelengths.h"
-#include "geometry/error.h"
+#include <refract/core/light_pass.h>
+#include <refract/core/render.h>
+#include <refract/core/spectrum/wavelengths.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

@@ -1,4 +1,4 @@
-#include "core/optics.h"
+#include <refract/core/optics.h>
 
 #include <cmath>
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <optional>
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract::optics {
 

@@ -1,9 +1,9 @@
-#include "core/polarisation.h"
+#include <refract/core/polarisation.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/optics.h"
+#include <refract/core/optics.h>
 
 namespace refract::polar {
 

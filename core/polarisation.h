@@ -33,7 +33,7 @@
 
 #include <Eigen/Core>
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract::polar {
 

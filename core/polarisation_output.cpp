@@ -1,9 +1,9 @@
-#include "core/polarisation_output.h"
+#include <refract/core/polarisation_output.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "core/image.h"
+#include <refract/core/image.h>
 
 namespace refract {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/render.h"
+#include <refract/core/render.h>
 
 namespace refract {
 

@@ -1,8 +1,8 @@
-#include "core/polarisation_state.h"
+#include <refract/core/polarisation_state.h>
 
 #include <cmath>
 
-#include "core/scene.h"
+#include <refract/core/scene.h>
 
 namespace refract {
 

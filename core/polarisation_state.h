@@ -8,7 +8,7 @@
 // Only the rotation from the previous frame to this ŝ is applied.
 #include <Eigen/Core>
 
-#include "core/polarisation.h"
+#include <refract/core/polarisation.h>
 
 namespace refract {
 

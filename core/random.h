@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

@@ -1,6 +1,6 @@
-#include "core/ray_tree.h"
+#include <refract/core/ray_tree.h>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract {
 

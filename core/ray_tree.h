@@ -42,10 +42,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/polarisation_state.h"
-#include "core/render_stats.h"
-#include "core/tracer.h"
-#include "geometry/width.h"
+#include <refract/core/polarisation_state.h>
+#include <refract/core/render_stats.h>
+#include <refract/core/tracer.h>
+#include <refract/geometry/width.h>
 
 namespace refract {
 

@@ -1,4 +1,4 @@
-#include "core/render.h"
+#include <refract/core/render.h>
 
 #include <algorithm>
 #include <atomic>
@@ -13,14 +13,14 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "core/illumination_map.h"
-#include "core/integrators/integrator.h"
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/memory.h"
-#include "core/tracer.h"
-#include "geometry/error.h"
-#include "core/threads.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/integrator.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/memory.h>
+#include <refract/core/tracer.h>
+#include <refract/geometry/error.h>
+#include <refract/core/threads.h>
 
 namespace refract {
 

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
-#include "core/polarisation_state.h"
-#include "core/trace_options.h"
-#include "core/render_stats.h"
-#include "core/scene.h"
+#include <refract/core/image.h>
+#include <refract/core/polarisation_state.h>
+#include <refract/core/trace_options.h>
+#include <refract/core/render_stats.h>
+#include <refract/core/scene.h>
 
 namespace refract {
 

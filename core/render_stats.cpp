@@ -1,4 +1,4 @@
-#include "core/render_stats.h"
+#include <refract/core/render_stats.h>
 
 #include <algorithm>
 #include <sstream>

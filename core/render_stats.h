@@ -5,7 +5,7 @@
 #include <string>
 #include <tuple>
 
-#include "core/fields.h"
+#include <refract/core/fields.h>
 
 namespace refract {
 

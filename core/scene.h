@@ -8,12 +8,12 @@
 #include <variant>
 #include <vector>
 
-#include "core/camera.h"
-#include "core/material.h"
-#include "core/spectrum/cie.h"
-#include "core/spectrum/dispersion.h"
-#include "core/spectrum/wavelengths.h"
-#include "geometry/shapes.h"
+#include <refract/core/camera.h>
+#include <refract/core/material.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/core/spectrum/wavelengths.h>
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

@@ -1,4 +1,4 @@
-#include "core/scene_json.h"
+#include <refract/core/scene_json.h>
 
 #include <cmath>
 #include <filesystem>
@@ -6,12 +6,12 @@
 #include <map>
 #include <sstream>
 
-#include "core/environment_map.h"
-#include "core/compat.h"
-#include "core/integrators/integrator.h"
-#include "core/json_reader.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/error.h"
+#include <refract/core/environment_map.h>
+#include <refract/core/compat.h>
+#include <refract/core/integrators/integrator.h>
+#include <refract/core/json_reader.h>
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene.h"
+#include <refract/core/scene.h>
 
 namespace refract {
 

@@ -1,10 +1,10 @@
-#include "core/threads.h"
+#include <refract/core/threads.h>
 
 #include <string>
 
 #include <tbb/task_arena.h>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract {
 

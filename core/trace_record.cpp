@@ -1,4 +1,4 @@
-#include "core/trace_record.h"
+#include <refract/core/trace_record.h>
 
 #include <cmath>
 #include <cstring>
@@ -7,11 +7,11 @@
 #include <type_traits>
 #include <tuple>
 
-#include "core/emitters.h"
-#include "core/optics.h"
-#include "core/ray_tree.h"
-#include "core/spectrum/wavelengths.h"
-#include "geometry/error.h"
+#include <refract/core/emitters.h>
+#include <refract/core/optics.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/spectrum/wavelengths.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

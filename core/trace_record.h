@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include <refract/core/scene.h>
 
 namespace refract {
 

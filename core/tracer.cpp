@@ -1,4 +1,4 @@
-#include "core/tracer.h"
+#include <refract/core/tracer.h>
 
 namespace refract {
 

@@ -7,11 +7,11 @@
 #include <memory>
 #include <optional>
 
-#include "core/compat.h"
-#include "core/hit_search.h"
-#include "core/lighting.h"
-#include "core/render_stats.h"
-#include "core/scene.h"
+#include <refract/core/compat.h>
+#include <refract/core/hit_search.h>
+#include <refract/core/lighting.h>
+#include <refract/core/render_stats.h>
+#include <refract/core/scene.h>
 
 namespace refract {
 

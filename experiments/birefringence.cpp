@@ -1,19 +1,19 @@
 // Double refraction in uniaxial crystals: the measurements (experiments/birefringence.h).
-#include "experiments/birefringence.h"
+#include <refract/experiments/birefringence.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
-#include "core/birefringence.h"
-#include "core/optics.h"
-#include "core/render.h"
-#include "core/spectrum/dispersion.h"
-#include "core/tracer.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/plot.h"
+#include <refract/core/birefringence.h>
+#include <refract/core/optics.h>
+#include <refract/core/render.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::birefringence {
 

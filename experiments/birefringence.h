@@ -16,9 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/image.h"
-#include "experiments/experiment.h"
+#include <refract/core/fields.h>
+#include <refract/core/image.h>
+#include <refract/experiments/experiment.h>
 
 namespace refract::experiments::birefringence {
 

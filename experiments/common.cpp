@@ -1,13 +1,13 @@
-#include "experiments/common.h"
+#include <refract/experiments/common.h>
 
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
 
-#include "core/scene_json.h"
-#include "experiments/plot.h"
-#include "geometry/error.h"
+#include <refract/core/scene_json.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/error.h>
 
 namespace refract::experiments {
 

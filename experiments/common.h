@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/render.h"
-#include "core/scene.h"
-#include "experiments/experiment.h"
+#include <refract/core/render.h>
+#include <refract/core/scene.h>
+#include <refract/experiments/experiment.h>
 
 namespace refract::experiments {
 

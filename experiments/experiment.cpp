@@ -1,7 +1,7 @@
-#include "experiments/experiment.h"
+#include <refract/experiments/experiment.h>
 
-#include "experiments/drivers.h"
-#include "geometry/error.h"
+#include <refract/experiments/drivers.h>
+#include <refract/geometry/error.h>
 
 namespace refract::experiments {
 

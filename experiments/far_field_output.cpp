@@ -1,12 +1,12 @@
-#include "experiments/common.h"
-#include "experiments/far_field_output.h"
+#include <refract/experiments/common.h>
+#include <refract/experiments/far_field_output.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "core/image.h"
-#include "core/spectrum/cie.h"
-#include "experiments/plot.h"
+#include <refract/core/image.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments {
 

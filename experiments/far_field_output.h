@@ -18,8 +18,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/far_field.h"
-#include "experiments/plot.h"
+#include <refract/core/far_field.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments {
 

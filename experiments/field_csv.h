@@ -11,8 +11,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/fields.h"
-#include "experiments/plot.h"
+#include <refract/core/fields.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments {
 

@@ -1,4 +1,4 @@
-#include "experiments/gem_cuts.h"
+#include <refract/experiments/gem_cuts.h>
 
 #include <algorithm>
 #include <chrono>

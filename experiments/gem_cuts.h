@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "experiments/experiment.h"
-#include "experiments/gem_sweep.h"
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/gem_sweep.h>
 
 namespace refract::experiments::gem_cuts {
 

@@ -2,10 +2,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "experiments/common.h"
-#include "experiments/gem_cuts.h"
-#include "experiments/gem_sweep_file.h"
-#include "experiments/plot.h"
+#include <refract/experiments/common.h>
+#include <refract/experiments/gem_cuts.h>
+#include <refract/experiments/gem_sweep_file.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::gem_cuts {
 

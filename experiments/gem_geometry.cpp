@@ -1,6 +1,6 @@
 // The round brilliant's geometry: line drawings, proportions measured back, a rendered
 // Fresnel diamond per preset, and the plane-set against triangle-mesh intersection cost.
-#include "experiments/gem_geometry.h"
+#include <refract/experiments/gem_geometry.h>
 
 #include <algorithm>
 #include <chrono>
@@ -10,10 +10,10 @@
 #include <optional>
 #include <sstream>
 
-#include "core/random.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/plot.h"
+#include <refract/core/random.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::gem_geometry {
 namespace fs = std::filesystem;

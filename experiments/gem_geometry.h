@@ -11,10 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/render.h"
-#include "experiments/experiment.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/core/fields.h>
+#include <refract/core/render.h>
+#include <refract/experiments/experiment.h>
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract::experiments::gem_geometry {
 

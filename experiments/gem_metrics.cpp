@@ -1,7 +1,7 @@
 // The gem metrics of one round brilliant (docs/gem-metrics.md): eye rays from a distant
 // viewer above the table, traced through the exact cut at the options' wavelengths, and
 // the light their trees return under each observation set-up (experiments/gem_observation.h).
-#include "experiments/gem_metrics.h"
+#include <refract/experiments/gem_metrics.h>
 
 #include <algorithm>
 #include <array>
@@ -9,8 +9,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/random.h"
-#include "experiments/gem_observation.h"
+#include <refract/core/random.h>
+#include <refract/experiments/gem_observation.h>
 
 namespace refract::gem_metrics {
 

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/fields.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/core/fields.h>
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract::gem_metrics {
 

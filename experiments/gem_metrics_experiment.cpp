@@ -1,16 +1,16 @@
 // `refract experiment gem-metrics`: metric values with errors for two presets, the
 // observation set-ups' images, convergence with the ray count, and the per-cut cost.
-#include "experiments/gem_metrics_experiment.h"
+#include <refract/experiments/gem_metrics_experiment.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/gem_observation.h"
-#include "experiments/plot.h"
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/gem_observation.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::gem_metrics_experiment {
 using gem_metrics::GemMetrics;

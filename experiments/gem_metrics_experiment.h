@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/image.h"
-#include "experiments/experiment.h"
-#include "experiments/gem_metrics.h"
+#include <refract/core/fields.h>
+#include <refract/core/image.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/gem_metrics.h>
 
 namespace refract::experiments::gem_metrics_experiment {
 

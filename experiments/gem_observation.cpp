@@ -1,15 +1,15 @@
 // The observation set-ups of the gem metrics and the eye-ray tracer through the exact cut.
-#include "experiments/gem_observation.h"
+#include <refract/experiments/gem_observation.h>
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "core/ray_tree.h"
-#include "core/scene.h"
-#include "core/spectrum/cie.h"
-#include "core/tracer.h"
-#include "geometry/error.h"
+#include <refract/core/ray_tree.h>
+#include <refract/core/scene.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/core/tracer.h>
+#include <refract/geometry/error.h>
 
 namespace refract::gem_metrics {
 

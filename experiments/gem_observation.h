@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
-#include "experiments/gem_metrics.h"
-#include "geometry/ray.h"
+#include <refract/core/image.h>
+#include <refract/experiments/gem_metrics.h>
+#include <refract/geometry/ray.h>
 
 namespace refract {
 struct Scene;

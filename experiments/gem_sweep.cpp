@@ -1,4 +1,4 @@
-#include "experiments/gem_sweep.h"
+#include <refract/experiments/gem_sweep.h>
 
 #include <algorithm>
 #include <charconv>
@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "core/threads.h"
-#include "geometry/error.h"
+#include <refract/core/threads.h>
+#include <refract/geometry/error.h>
 
 namespace refract::experiments::gem_sweep {
 

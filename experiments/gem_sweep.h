@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "experiments/gem_metrics.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/experiments/gem_metrics.h>
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract::experiments::gem_sweep {
 

@@ -1,4 +1,4 @@
-#include "experiments/gem_sweep_file.h"
+#include <refract/experiments/gem_sweep_file.h>
 
 #include <cerrno>
 #include <cstring>
@@ -9,8 +9,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 
 namespace refract::experiments::gem_sweep {
 

@@ -9,7 +9,7 @@
 #include <map>
 #include <string>
 
-#include "experiments/gem_sweep.h"
+#include <refract/experiments/gem_sweep.h>
 
 namespace refract::experiments::gem_sweep {
 

@@ -1,4 +1,4 @@
-#include "experiments/ohtsuka1998.h"
+#include <refract/experiments/ohtsuka1998.h>
 
 #include <algorithm>
 #include <chrono>
@@ -8,18 +8,18 @@
 #include <sstream>
 #include <thread>
 
-#include "core/illumination_map.h"
-#include "core/image.h"
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/render.h"
-#include "core/spectrum/cie.h"
-#include "core/spectrum/dispersion.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/ohtsuka1998_maps.h"
-#include "experiments/ohtsuka1998_result.h"
-#include "experiments/plot.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/image.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/render.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/ohtsuka1998_maps.h>
+#include <refract/experiments/ohtsuka1998_result.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::ohtsuka1998 {
 

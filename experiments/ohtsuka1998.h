@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene.h"
-#include "experiments/experiment.h"
+#include <refract/core/scene.h>
+#include <refract/experiments/experiment.h>
 
 namespace refract::experiments::ohtsuka1998 {
 

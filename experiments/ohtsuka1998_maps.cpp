@@ -1,4 +1,4 @@
-#include "experiments/ohtsuka1998_maps.h"
+#include <refract/experiments/ohtsuka1998_maps.h>
 
 #include <chrono>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <memory>
 #include <tuple>
 
-#include "core/illumination_map.h"
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "experiments/common.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/experiments/common.h>
 
 namespace refract::experiments::ohtsuka1998 {
 

@@ -17,9 +17,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/illumination_map.h"
-#include "core/scene.h"
-#include "experiments/ohtsuka1998.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/scene.h>
+#include <refract/experiments/ohtsuka1998.h>
 
 namespace refract::experiments::ohtsuka1998 {
 

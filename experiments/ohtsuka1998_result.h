@@ -9,11 +9,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/image.h"
-#include "core/render.h"
-#include "experiments/ohtsuka1998.h"
-#include "experiments/ohtsuka1998_maps.h"
+#include <refract/core/fields.h>
+#include <refract/core/image.h>
+#include <refract/core/render.h>
+#include <refract/experiments/ohtsuka1998.h>
+#include <refract/experiments/ohtsuka1998_maps.h>
 
 namespace refract::experiments::ohtsuka1998 {
 

@@ -1,11 +1,11 @@
-#include "experiments/optics_bench.h"
+#include <refract/experiments/optics_bench.h>
 
 #include <chrono>
 #include <cmath>
 
-#include "core/scene_json.h"
-#include "core/spectrum/dispersion.h"
-#include "experiments/optics_closed_forms.h"
+#include <refract/core/scene_json.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/experiments/optics_closed_forms.h>
 
 namespace refract::experiments::optics_bench {
 

@@ -17,10 +17,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/far_field.h"
-#include "core/fields.h"
-#include "experiments/experiment.h"
-#include "experiments/far_field_output.h"
+#include <refract/core/far_field.h>
+#include <refract/core/fields.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/far_field_output.h>
 
 namespace refract::experiments::optics_bench {
 

@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <sstream>
 
-#include "experiments/common.h"
-#include "experiments/far_field_output.h"
-#include "experiments/field_csv.h"
-#include "experiments/optics_bench.h"
-#include "experiments/plot.h"
+#include <refract/experiments/common.h>
+#include <refract/experiments/far_field_output.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/optics_bench.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::optics_bench {
 

@@ -1,10 +1,10 @@
-#include "experiments/optics_closed_forms.h"
+#include <refract/experiments/optics_closed_forms.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/optics.h"
+#include <refract/core/optics.h>
 
 namespace refract::experiments::closed_form {
 

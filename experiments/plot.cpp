@@ -1,4 +1,4 @@
-#include "experiments/plot.h"
+#include <refract/experiments/plot.h>
 
 #include <atomic>
 #include <cerrno>
@@ -16,10 +16,10 @@
 #include <thread>
 #include <unistd.h>
 
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
-#include "geometry/format.h"
-#include "validation/process.h"
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/validation/process.h>
 
 
 namespace refract::experiments {

@@ -1,6 +1,6 @@
 // Exact polarisation against natural light: the measurements (experiments/polarisation.h).
 // The files are written by experiments/polarisation_report.cpp.
-#include "experiments/polarisation.h"
+#include <refract/experiments/polarisation.h>
 
 #include <algorithm>
 #include <chrono>
@@ -11,16 +11,16 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "core/illumination_map.h"
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/ray_tree.h"
-#include "core/spectrum/cie.h"
-#include "core/tracer.h"
-#include "experiments/common.h"
-#include "experiments/ohtsuka1998.h"
-#include "experiments/plot.h"
-#include "core/threads.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/ohtsuka1998.h>
+#include <refract/experiments/plot.h>
+#include <refract/core/threads.h>
 
 namespace refract::experiments::polarisation {
 

@@ -19,11 +19,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/image.h"
-#include "core/polarisation.h"
-#include "core/render.h"
-#include "experiments/experiment.h"
+#include <refract/core/fields.h>
+#include <refract/core/image.h>
+#include <refract/core/polarisation.h>
+#include <refract/core/render.h>
+#include <refract/experiments/experiment.h>
 
 namespace refract::experiments::polarisation {
 

@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/polarisation_output.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/plot.h"
-#include "experiments/polarisation.h"
+#include <refract/core/polarisation_output.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/plot.h>
+#include <refract/experiments/polarisation.h>
 
 namespace refract::experiments::polarisation {
 

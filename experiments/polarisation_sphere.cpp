@@ -3,12 +3,12 @@
 // (experiments/polarisation.h).
 #include <cmath>
 
-#include "core/optics.h"
-#include "core/ray_tree.h"
-#include "core/tracer.h"
-#include "experiments/common.h"
-#include "experiments/plot.h"
-#include "experiments/polarisation.h"
+#include <refract/core/optics.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/plot.h>
+#include <refract/experiments/polarisation.h>
 
 namespace refract::experiments::polarisation {
 

@@ -1,18 +1,18 @@
 // RTIOW dielectric chapter: the stages of the glass sphere, Schlick's error, and the
 // convergence of the one-branch stochastic choice to the full Fresnel tree.
-#include "experiments/rtiow.h"
+#include <refract/experiments/rtiow.h>
 
 #include <cmath>
 #include <deque>
 #include <filesystem>
 #include <sstream>
 
-#include "core/optics.h"
-#include "core/ray_tree.h"
-#include "core/tracer.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/plot.h"
+#include <refract/core/optics.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::rtiow {
 namespace fs = std::filesystem;

@@ -8,11 +8,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/image.h"
-#include "core/scene.h"
-#include "experiments/common.h"
-#include "experiments/experiment.h"
+#include <refract/core/fields.h>
+#include <refract/core/image.h>
+#include <refract/core/scene.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/experiment.h>
 
 namespace refract::experiments::rtiow {
 

@@ -1,17 +1,17 @@
 // Yasuda et al. 1984: Fig. 4 (reflectance vs angle, n = 1.5), Fig. 7 (transmissivity vs
 // angle and index), Fig. 8 (ten transparent spheres, fresnel-tree), Fig. 9 (constant
 // reflectivity). The cost study of §5 is in yasuda_cost.cpp.
-#include "experiments/yasuda1984.h"
+#include <refract/experiments/yasuda1984.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 
-#include "core/optics.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/plot.h"
+#include <refract/core/optics.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::yasuda1984 {
 namespace fs = std::filesystem;

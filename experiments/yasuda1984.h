@@ -7,11 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/image.h"
-#include "core/render.h"
-#include "experiments/experiment.h"
-#include "experiments/op_count.h"
-#include "core/fields.h"
+#include <refract/core/image.h>
+#include <refract/core/render.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/op_count.h>
+#include <refract/core/fields.h>
 
 namespace refract::experiments::yasuda1984 {
 

@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/optics.h"
-#include "core/tracer.h"
-#include "experiments/common.h"
-#include "experiments/field_csv.h"
-#include "experiments/plot.h"
-#include "experiments/yasuda1984.h"
+#include <refract/core/optics.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/plot.h>
+#include <refract/experiments/yasuda1984.h>
 
 namespace refract::experiments::yasuda1984 {
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     using namespace refract;

@@ -1,4 +1,4 @@
-#include "geometry/atomic_file.h"
+#include <refract/geometry/atomic_file.h>
 
 #include <array>
 #include <atomic>
@@ -12,7 +12,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract {
 

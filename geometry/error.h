@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/format.h"
+#include <refract/geometry/format.h>
 
 namespace refract {
 

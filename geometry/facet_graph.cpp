@@ -1,12 +1,12 @@
-#include "geometry/facet_graph.h"
+#include <refract/geometry/facet_graph.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
 
-#include "geometry/plane_set.h"
-#include "geometry/simd.h"
+#include <refract/geometry/plane_set.h>
+#include <refract/geometry/simd.h>
 
 namespace refract {
 

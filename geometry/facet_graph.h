@@ -32,9 +32,9 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/lanes.h"
-#include "geometry/plane_set.h"
-#include "geometry/shapes.h"
+#include <refract/geometry/lanes.h>
+#include <refract/geometry/plane_set.h>
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

@@ -1,4 +1,4 @@
-#include "geometry/format.h"
+#include <refract/geometry/format.h>
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "geometry/icosphere.h"
+#include <refract/geometry/icosphere.h>
 
 #include <cmath>
 #include <map>

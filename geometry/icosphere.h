@@ -3,7 +3,7 @@
 // `subdivisions` times (20·4^s triangles: 80 at s = 1 … 327 680 at s = 7), the new
 // vertices pushed out to the sphere; counter-clockwise seen from outside, shared
 // vertices (a closed mesh). Test and benchmark geometry for the mesh search.
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

@@ -17,7 +17,7 @@
 #include <xsimd/xsimd.hpp>
 #endif
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 #define REFRACT_LANE_OP inline __attribute__((always_inline))
 

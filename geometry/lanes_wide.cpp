@@ -1,11 +1,11 @@
 // Whole-packet operations on the widest vector instructions (see lanes_wide.h): the choice
 // of the variant. The kernel is in geometry/simd/lanes_wide.cpp.
-#include "geometry/lanes_wide.h"
+#include <refract/geometry/lanes_wide.h>
 
 #include <atomic>
 
-#include "geometry/plane_set.h"
-#include "geometry/simd.h"
+#include <refract/geometry/plane_set.h>
+#include <refract/geometry/simd.h>
 
 namespace refract {
 

@@ -3,8 +3,8 @@
 // AVX2 or the baseline, chosen once at run time), for the packet steps where the baseline
 // lane operations of geometry/lanes.h (two lanes an instruction) are the cost. Each lane's
 // result is the lane operation's, bit for bit.
-#include "geometry/lanes.h"
-#include "geometry/plane_set.h"
+#include <refract/geometry/lanes.h>
+#include <refract/geometry/plane_set.h>
 
 namespace refract {
 

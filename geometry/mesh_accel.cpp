@@ -1,4 +1,4 @@
-#include "geometry/mesh_accel.h"
+#include <refract/geometry/mesh_accel.h>
 
 #include <embree3/rtcore.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract {
 

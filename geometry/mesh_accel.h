@@ -21,7 +21,7 @@
 #include <memory>
 #include <optional>
 
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

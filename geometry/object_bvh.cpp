@@ -1,4 +1,4 @@
-#include "geometry/object_bvh.h"
+#include <refract/geometry/object_bvh.h>
 
 #include <algorithm>
 

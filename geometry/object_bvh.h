@@ -17,7 +17,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

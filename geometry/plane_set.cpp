@@ -1,9 +1,9 @@
 // The slab pass over a convex plane set (see plane_set.h): the choice of its variant. The
 // kernel, and why its result is the scalar loop's bit for bit, is in
 // geometry/simd/plane_set.cpp.
-#include "geometry/plane_set.h"
+#include <refract/geometry/plane_set.h>
 
-#include "geometry/simd.h"
+#include <refract/geometry/simd.h>
 
 namespace refract {
 

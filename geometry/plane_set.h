@@ -26,7 +26,7 @@
 #include <cstddef>
 #include <optional>
 
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

@@ -1,6 +1,6 @@
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
-#include "geometry/plane_set.h"
+#include <refract/geometry/plane_set.h>
 
 #include <cmath>
 #include <algorithm>

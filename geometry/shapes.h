@@ -8,8 +8,8 @@
 #include <variant>
 #include <vector>
 
-#include "geometry/lanes.h"
-#include "geometry/ray.h"
+#include <refract/geometry/lanes.h>
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

@@ -24,7 +24,7 @@
 
 #include <xsimd/xsimd.hpp>
 
-#include "geometry/plane_set.h"
+#include <refract/geometry/plane_set.h>
 
 namespace refract::simd {
 

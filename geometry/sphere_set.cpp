@@ -1,12 +1,12 @@
 // A list of spheres tested together (see sphere_set.h).
-#include "geometry/sphere_set.h"
+#include <refract/geometry/sphere_set.h>
 
 #include <atomic>
 #include <cstring>
 #include <limits>
 
-#include "geometry/plane_set.h"
-#include "geometry/simd.h"
+#include <refract/geometry/plane_set.h>
+#include <refract/geometry/simd.h>
 
 namespace refract {
 

@@ -17,8 +17,8 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/plane_set.h"
-#include "geometry/shapes.h"
+#include <refract/geometry/plane_set.h>
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

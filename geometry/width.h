@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "geometry/lanes.h"
-#include "geometry/ray.h"
+#include <refract/geometry/lanes.h>
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <random>
 
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract::test {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the tests: render options with a thread count.
-#include "core/render.h"
+#include <refract/core/render.h>
 
 namespace refract::testing {
 

@@ -6,14 +6,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/integrators/fresnel_tree.h"
-#include "core/integrators/spectral.h"
-#include "core/optics.h"
-#include "core/polarisation_state.h"
-#include "core/render.h"
-#include "core/scene_json.h"
+#include <refract/core/integrators/fresnel_tree.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/optics.h>
+#include <refract/core/polarisation_state.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
 #include "tests/render_options.h"
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using refract::testing::threads;

@@ -9,8 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 #include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;

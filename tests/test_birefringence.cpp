@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
-#include "core/birefringence.h"
-#include "core/polarisation.h"
-#include "core/spectrum/dispersion.h"
+#include <refract/core/birefringence.h>
+#include <refract/core/polarisation.h>
+#include <refract/core/spectrum/dispersion.h>
 
 using namespace refract;
 using namespace refract::biref;

@@ -10,13 +10,13 @@
 #include <unistd.h>
 namespace fs_path_helper = std::filesystem;
 
-#include "core/birefringence.h"
-#include "core/ray_tree.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/spectrum/dispersion.h"
-#include "experiments/birefringence.h"
-#include "experiments/common.h"
+#include <refract/core/birefringence.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/experiments/birefringence.h>
+#include <refract/experiments/common.h>
 #include "tests/render_options.h"
 
 using namespace refract;

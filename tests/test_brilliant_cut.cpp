@@ -12,9 +12,9 @@
 #include <set>
 #include <sstream>
 
-#include "geometry/error.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/gem/gem_io.h"
+#include <refract/geometry/error.h>
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/gem/gem_io.h>
 
 using namespace refract;
 

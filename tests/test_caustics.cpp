@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "core/scene_json.h"
-#include "geometry/error.h"
-#include "validation/caustics.h"
-#include "validation/pov_export.h"
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/caustics.h>
+#include <refract/validation/pov_export.h>
 
 using namespace refract;
 using namespace refract::validation;

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using nlohmann::json;

@@ -12,13 +12,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/environment_map.h"
-#include "core/image.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/environment_map.h>
+#include <refract/core/image.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 #include "render_options.h"
-#include "validation/pov_export.h"
+#include <refract/validation/pov_export.h>
 
 using namespace refract;
 using nlohmann::json;

@@ -11,16 +11,16 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "core/optics.h"
-#include "core/scene_json.h"
-#include "experiments/common.h"
-#include "experiments/experiment.h"
-#include "experiments/op_count.h"
-#include "experiments/optics_bench.h"
-#include "experiments/plot.h"
-#include "experiments/polarisation.h"
-#include "experiments/rtiow.h"
-#include "experiments/yasuda1984.h"
+#include <refract/core/optics.h>
+#include <refract/core/scene_json.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/op_count.h>
+#include <refract/experiments/optics_bench.h>
+#include <refract/experiments/plot.h>
+#include <refract/experiments/polarisation.h>
+#include <refract/experiments/rtiow.h>
+#include <refract/experiments/yasuda1984.h>
 
 using namespace refract;
 using namespace refract::experiments;

@@ -16,15 +16,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/light_pass.h"
-#include "core/optics.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/tracer.h"
-#include "geometry/facet_graph.h"
-#include "geometry/lanes_wide.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/shapes.h"
+#include <refract/core/light_pass.h>
+#include <refract/core/optics.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/tracer.h>
+#include <refract/geometry/facet_graph.h>
+#include <refract/geometry/lanes_wide.h>
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/shapes.h>
 #include "tests/hit_bits.h"
 
 using namespace refract;

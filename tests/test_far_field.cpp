@@ -7,10 +7,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/far_field.h"
-#include "core/optics.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/far_field.h>
+#include <refract/core/optics.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using nlohmann::json;

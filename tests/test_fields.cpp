@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "core/fields.h"
-#include "core/render_stats.h"
-#include "experiments/field_csv.h"
-#include "experiments/optics_bench.h"
-#include "experiments/polarisation.h"
+#include <refract/core/fields.h>
+#include <refract/core/render_stats.h>
+#include <refract/experiments/field_csv.h>
+#include <refract/experiments/optics_bench.h>
+#include <refract/experiments/polarisation.h>
 
 using namespace refract;
 using namespace refract::experiments;

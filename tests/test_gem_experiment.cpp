@@ -10,12 +10,12 @@
 #include <map>
 #include <unistd.h>
 
-#include "core/scene_json.h"
-#include "experiments/common.h"
-#include "experiments/experiment.h"
-#include "experiments/gem_geometry.h"
-#include "experiments/plot.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/core/scene_json.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/gem_geometry.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/gem/brilliant.h>
 
 using namespace refract;
 using namespace refract::experiments;

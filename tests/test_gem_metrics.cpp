@@ -14,14 +14,14 @@
 #include <tuple>
 #include <vector>
 
-#include "core/image.h"
-#include "experiments/common.h"
-#include "experiments/experiment.h"
-#include "experiments/gem_metrics_experiment.h"
-#include "experiments/gem_metrics.h"
-#include "experiments/gem_observation.h"
-#include "experiments/plot.h"
-#include "geometry/error.h"
+#include <refract/core/image.h>
+#include <refract/experiments/common.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/gem_metrics_experiment.h>
+#include <refract/experiments/gem_metrics.h>
+#include <refract/experiments/gem_observation.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using namespace refract::gem_metrics;

@@ -15,10 +15,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "experiments/gem_cuts.h"
-#include "experiments/gem_sweep_file.h"
-#include "experiments/plot.h"
-#include "geometry/error.h"
+#include <refract/experiments/gem_cuts.h>
+#include <refract/experiments/gem_sweep_file.h>
+#include <refract/experiments/plot.h>
+#include <refract/geometry/error.h>
 #include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;

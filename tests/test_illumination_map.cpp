@@ -6,11 +6,11 @@
 #include <cmath>
 #include <random>
 
-#include "core/illumination_map.h"
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "core/optics.h"
-#include "core/random.h"
-#include "core/render.h"
-#include "core/scene_json.h"
+#include <refract/core/optics.h>
+#include <refract/core/random.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
 
 #include <nlohmann/json.hpp>
-#include "validation/analytic.h"
+#include <refract/validation/analytic.h>
 
 using namespace refract;
 

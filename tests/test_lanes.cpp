@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "geometry/lanes.h"
+#include <refract/geometry/lanes.h>
 #include "tests/hit_bits.h"
 
 using namespace refract;

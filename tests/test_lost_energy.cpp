@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/render.h"
-#include "core/scene_json.h"
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
 
 using namespace refract;
 using nlohmann::json;

@@ -6,8 +6,8 @@
 
 #include <variant>
 
-#include "core/material.h"
-#include "core/tracer.h"
+#include <refract/core/material.h>
+#include <refract/core/tracer.h>
 
 using namespace refract;
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "geometry/error.h"
-#include "validation/compare.h"
-#include "validation/measure.h"
+#include <refract/geometry/error.h>
+#include <refract/validation/compare.h>
+#include <refract/validation/measure.h>
 
 using namespace refract;
 using namespace refract::validation;

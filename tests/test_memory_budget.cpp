@@ -4,12 +4,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/memory.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/memory.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using Catch::Matchers::Contains;

@@ -10,12 +10,12 @@
 #include <random>
 #include <utility>
 
-#include "core/tracer.h"
-#include "geometry/gem/brilliant.h"
-#include "geometry/icosphere.h"
-#include "geometry/mesh_accel.h"
-#include "geometry/object_bvh.h"
-#include "geometry/sphere_set.h"
+#include <refract/core/tracer.h>
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/icosphere.h>
+#include <refract/geometry/mesh_accel.h>
+#include <refract/geometry/object_bvh.h>
+#include <refract/geometry/sphere_set.h>
 
 #include "hit_bits.h"
 

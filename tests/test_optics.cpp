@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/optics.h"
+#include <refract/core/optics.h>
 
 using namespace refract;
 using Catch::Matchers::WithinAbs;

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/optics.h"
-#include "experiments/optics_closed_forms.h"
+#include <refract/core/optics.h>
+#include <refract/experiments/optics_closed_forms.h>
 
 using namespace refract;
 namespace cf = refract::experiments::closed_form;

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/gem/brilliant.h"
-#include "geometry/plane_set.h"
-#include "geometry/shapes.h"
+#include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/plane_set.h>
+#include <refract/geometry/shapes.h>
 #include "tests/hit_bits.h"
 
 using namespace refract;

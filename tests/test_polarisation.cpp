@@ -6,8 +6,8 @@
 #include <complex>
 #include <vector>
 
-#include "core/optics.h"
-#include "core/polarisation.h"
+#include <refract/core/optics.h>
+#include <refract/core/polarisation.h>
 
 using namespace refract;
 using Catch::Matchers::WithinAbs;

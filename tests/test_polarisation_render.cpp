@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/integrators/fresnel_tree.h"
-#include "core/optics.h"
-#include "core/polarisation_state.h"
-#include "core/render.h"
-#include "core/scene_json.h"
+#include <refract/core/integrators/fresnel_tree.h>
+#include <refract/core/optics.h>
+#include <refract/core/polarisation_state.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
 #include "tests/render_options.h"
 
 using namespace refract;

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <string>
 
-#include "core/integrators/spectral.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/spectrum/dispersion.h"
-#include "validation/random_suite.h"
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/validation/random_suite.h>
 
 using namespace refract;
 

@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene_json.h"
-#include "validation/pov_export.h"
-#include "validation/random_scene.h"
+#include <refract/core/scene_json.h>
+#include <refract/validation/pov_export.h>
+#include <refract/validation/random_scene.h>
 
 using namespace refract;
 using namespace refract::validation;

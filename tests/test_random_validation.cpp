@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "core/scene_json.h"
-#include "validation/random_suite.h"
+#include <refract/core/scene_json.h>
+#include <refract/validation/random_suite.h>
 
 using namespace refract;
 using namespace refract::validation;

@@ -7,10 +7,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/render.h"
-#include "core/scene_json.h"
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
 
 using namespace refract;
 

@@ -8,11 +8,11 @@
 
 #include <cmath>
 
-#include "core/integrators/fresnel_tree.h"
-#include "core/integrators/stochastic.h"
-#include "core/random.h"
-#include "core/render.h"
-#include "core/tracer.h"
+#include <refract/core/integrators/fresnel_tree.h>
+#include <refract/core/integrators/stochastic.h>
+#include <refract/core/random.h>
+#include <refract/core/render.h>
+#include <refract/core/tracer.h>
 
 using namespace refract;
 

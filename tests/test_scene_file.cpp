@@ -9,10 +9,10 @@
 
 #include <cmath>
 
-#include "core/render.h"
-#include "core/spectrum/dispersion.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/render.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using Catch::Matchers::Contains;

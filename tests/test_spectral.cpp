@@ -7,14 +7,14 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "core/illumination_map.h"
-#include "core/integrators/spectral.h"
-#include "core/light_pass.h"
-#include "core/optics.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "experiments/experiment.h"
-#include "experiments/plot.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/light_pass.h>
+#include <refract/core/optics.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/experiments/experiment.h>
+#include <refract/experiments/plot.h>
 
 using namespace refract;
 

@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/integrators/spectral.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using nlohmann::json;

@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/spectrum/cie.h"
-#include "core/spectrum/dispersion.h"
-#include "core/spectrum/wavelengths.h"
-#include "geometry/error.h"
+#include <refract/core/spectrum/cie.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/core/spectrum/wavelengths.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using namespace refract::spectrum;

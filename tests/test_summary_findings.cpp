@@ -6,11 +6,11 @@
 
 #include <string>
 
-#include "experiments/birefringence.h"
-#include "experiments/gem_cuts.h"
-#include "experiments/polarisation.h"
-#include "experiments/rtiow.h"
-#include "experiments/yasuda1984.h"
+#include <refract/experiments/birefringence.h>
+#include <refract/experiments/gem_cuts.h>
+#include <refract/experiments/polarisation.h>
+#include <refract/experiments/rtiow.h>
+#include <refract/experiments/yasuda1984.h>
 
 using namespace refract;
 using namespace refract::experiments;

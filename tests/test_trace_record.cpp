@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/optics.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/trace_record.h"
-#include "geometry/error.h"
+#include <refract/core/optics.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/trace_record.h>
+#include <refract/geometry/error.h>
 
 using namespace refract;
 using nlohmann::json;

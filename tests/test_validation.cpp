@@ -11,15 +11,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/optics.h"
-#include "core/scene_json.h"
-#include "core/tracer.h"
-#include "geometry/error.h"
-#include "validation/compare.h"
-#include "validation/files.h"
-#include "validation/pov_export.h"
-#include "validation/povray_runner.h"
-#include "validation/suite.h"
+#include <refract/core/optics.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/tracer.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/compare.h>
+#include <refract/validation/files.h>
+#include <refract/validation/pov_export.h>
+#include <refract/validation/povray_runner.h>
+#include <refract/validation/suite.h>
 
 using namespace refract;
 using namespace refract::validation;

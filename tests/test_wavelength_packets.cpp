@@ -10,11 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/light_pass.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/tracer.h"
-#include "experiments/ohtsuka1998.h"
+#include <refract/core/light_pass.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/tracer.h>
+#include <refract/experiments/ohtsuka1998.h>
 #include "tests/hit_bits.h"
 
 using namespace refract;

@@ -1,8 +1,8 @@
-#include "validation/analytic.h"
+#include <refract/validation/analytic.h>
 
 #include <cmath>
 
-#include "core/optics.h"
+#include <refract/core/optics.h>
 
 namespace refract::analytic {
 

@@ -3,7 +3,7 @@
 // known in closed form.
 #include <optional>
 
-#include "core/scene.h"
+#include <refract/core/scene.h>
 
 namespace refract::analytic {
 

@@ -1,15 +1,15 @@
-#include "validation/caustics.h"
+#include <refract/validation/caustics.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <sstream>
 
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
-#include "geometry/format.h"
-#include "validation/pov_export.h"
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/validation/pov_export.h>
 
 namespace refract::validation {
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-#include "validation/povray_runner.h"
-#include "validation/suite.h"
+#include <refract/core/scene.h>
+#include <refract/validation/povray_runner.h>
+#include <refract/validation/suite.h>
 
 namespace refract::validation {
 

@@ -1,14 +1,14 @@
-#include "validation/compare.h"
-#include "validation/measure.h"
+#include <refract/validation/compare.h>
+#include <refract/validation/measure.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <unistd.h>
 
-#include "core/image_io.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/core/image_io.h>
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 
 namespace refract::validation {
 namespace {

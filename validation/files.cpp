@@ -1,4 +1,4 @@
-#include "validation/files.h"
+#include <refract/validation/files.h>
 
 #include <cerrno>
 #include <cstring>
@@ -7,8 +7,8 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
 
 namespace refract::validation {
 

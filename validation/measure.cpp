@@ -1,17 +1,17 @@
-#include "validation/measure.h"
+#include <refract/validation/measure.h>
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "core/far_field.h"
+#include <refract/core/far_field.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract::validation {
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/image.h"
+#include <refract/core/image.h>
 
 namespace refract::validation {
 

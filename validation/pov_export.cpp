@@ -1,4 +1,4 @@
-#include "validation/pov_export.h"
+#include <refract/validation/pov_export.h>
 
 #include <algorithm>
 #include <cctype>
@@ -13,10 +13,10 @@
 
 #include <Eigen/Dense>
 
-#include "core/environment_map.h"
-#include "core/image.h"
-#include "geometry/error.h"
-#include "validation/files.h"
+#include <refract/core/environment_map.h>
+#include <refract/core/image.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/files.h>
 
 namespace refract::validation {
 

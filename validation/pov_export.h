@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/scene.h"
+#include <refract/core/scene.h>
 
 namespace refract::validation {
 

@@ -1,4 +1,4 @@
-#include "validation/povray_runner.h"
+#include <refract/validation/povray_runner.h>
 
 #include <cerrno>
 #include <chrono>
@@ -14,9 +14,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "geometry/error.h"
-#include "validation/files.h"
-#include "validation/process.h"
+#include <refract/geometry/error.h>
+#include <refract/validation/files.h>
+#include <refract/validation/process.h>
 
 namespace refract::validation {
 namespace fs = std::filesystem;

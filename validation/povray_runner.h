@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
+#include <refract/core/image.h>
 
 namespace refract::validation {
 

@@ -1,4 +1,4 @@
-#include "validation/process.h"
+#include <refract/validation/process.h>
 
 #include <cerrno>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 extern char** environ;
 

@@ -1,11 +1,11 @@
-#include "validation/random_geometry.h"
+#include <refract/validation/random_geometry.h>
 
 #include <charconv>
 #include <map>
 
-#include "geometry/error.h"
-#include "geometry/format.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract::validation::random_detail {
 

@@ -14,8 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/camera.h"
-#include "geometry/ray.h"
+#include <refract/core/camera.h>
+#include <refract/geometry/ray.h>
 
 namespace refract::validation::random_detail {
 

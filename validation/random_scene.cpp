@@ -1,4 +1,4 @@
-#include "validation/random_scene.h"
+#include <refract/validation/random_scene.h>
 
 #include <algorithm>
 #include <array>
@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/camera.h"
-#include "geometry/error.h"
-#include "validation/random_geometry.h"
+#include <refract/core/camera.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/random_geometry.h>
 
 namespace refract::validation::random_detail {
 namespace {

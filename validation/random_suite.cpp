@@ -1,4 +1,4 @@
-#include "validation/random_suite.h"
+#include <refract/validation/random_suite.h>
 
 #include <algorithm>
 #include <atomic>
@@ -9,11 +9,11 @@
 #include <sstream>
 #include <thread>
 
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
-#include "validation/files.h"
-#include "validation/pov_export.h"
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/files.h>
+#include <refract/validation/pov_export.h>
 
 namespace refract::validation {
 namespace fs = std::filesystem;

@@ -12,9 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/compare.h"
-#include "validation/povray_runner.h"
-#include "validation/random_scene.h"
+#include <refract/validation/compare.h>
+#include <refract/validation/povray_runner.h>
+#include <refract/validation/random_scene.h>
 
 namespace refract::validation {
 

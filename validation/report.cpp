@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <sstream>
 
-#include "geometry/format.h"
-#include "validation/files.h"
-#include "validation/suite.h"
+#include <refract/geometry/format.h>
+#include <refract/validation/files.h>
+#include <refract/validation/suite.h>
 
 namespace refract::validation {
 namespace {

@@ -1,4 +1,4 @@
-#include "validation/suite.h"
+#include <refract/validation/suite.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/json_reader.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "geometry/error.h"
-#include "validation/analytic.h"
-#include "validation/compare.h"
-#include "validation/files.h"
-#include "validation/pov_export.h"
+#include <refract/core/json_reader.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/geometry/error.h>
+#include <refract/validation/analytic.h>
+#include <refract/validation/compare.h>
+#include <refract/validation/files.h>
+#include <refract/validation/pov_export.h>
 
 namespace refract::validation {
 namespace fs = std::filesystem;

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "validation/povray_runner.h"
+#include <refract/validation/povray_runner.h>
 
 namespace refract::validation {
 

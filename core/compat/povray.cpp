@@ -1,11 +1,11 @@
-#include "core/compat/povray.h"
+#include <refract/core/compat/povray.h>
 
 #include <cmath>
 #include <map>
 
-#include "core/hit_search.h"
-#include "core/integrators/spectral.h"
-#include "core/scene.h"
+#include <refract/core/hit_search.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/scene.h>
 
 namespace refract::povray {
 

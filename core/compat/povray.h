@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/interaction.h"
-#include "core/material.h"
+#include <refract/core/interaction.h>
+#include <refract/core/material.h>
 
 namespace refract {
 

@@ -10,8 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/integrators/spectral.h"
-#include "core/ray_tree.h"
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/ray_tree.h>
 
 namespace refract {
 

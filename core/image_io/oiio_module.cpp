@@ -8,7 +8,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
-#include "core/image_io.h"
+#include <refract/core/image_io.h>
 
 namespace refract {
 namespace {

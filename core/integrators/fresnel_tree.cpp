@@ -1,8 +1,8 @@
-#include "core/integrators/fresnel_tree.h"
+#include <refract/core/integrators/fresnel_tree.h>
 
-#include "core/integrators/integrator.h"
-#include "core/integrators/spectral.h"
-#include "core/ray_tree.h"
+#include <refract/core/integrators/integrator.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/ray_tree.h>
 
 namespace refract {
 

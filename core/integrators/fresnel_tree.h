@@ -1,6 +1,6 @@
 #pragma once
-#include "core/polarisation_state.h"
-#include "core/tracer.h"
+#include <refract/core/polarisation_state.h>
+#include <refract/core/tracer.h>
 
 namespace refract {
 

@@ -1,7 +1,7 @@
-#include "core/integrators/integrator.h"
+#include <refract/core/integrators/integrator.h>
 
-#include "core/integrators/spectral.h"
-#include "geometry/error.h"
+#include <refract/core/integrators/spectral.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

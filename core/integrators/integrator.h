@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/polarisation_state.h"
-#include "core/random.h"
-#include "core/tracer.h"
+#include <refract/core/polarisation_state.h>
+#include <refract/core/random.h>
+#include <refract/core/tracer.h>
 
 namespace refract {
 

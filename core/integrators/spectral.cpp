@@ -1,4 +1,4 @@
-#include "core/integrators/spectral.h"
+#include <refract/core/integrators/spectral.h>
 
 #include <cmath>
 #include <functional>
@@ -6,12 +6,12 @@
 #include <numeric>
 #include <optional>
 
-#include "core/illumination_map.h"
-#include "core/integrators/integrator.h"
-#include "core/compat/refraction_split.h"
-#include "core/ray_tree.h"
-#include "core/spectrum/cie.h"
-#include "geometry/error.h"
+#include <refract/core/illumination_map.h>
+#include <refract/core/integrators/integrator.h>
+#include <refract/core/compat/refraction_split.h>
+#include <refract/core/ray_tree.h>
+#include <refract/core/spectrum/cie.h>
+#include <refract/geometry/error.h>
 
 namespace refract {
 

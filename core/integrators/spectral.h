@@ -19,7 +19,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/ray_tree.h"
+#include <refract/core/ray_tree.h>
 
 namespace refract {
 

@@ -1,8 +1,8 @@
-#include "core/integrators/stochastic.h"
+#include <refract/core/integrators/stochastic.h>
 
-#include "core/integrators/integrator.h"
+#include <refract/core/integrators/integrator.h>
 
-#include "geometry/lanes_wide.h"
+#include <refract/geometry/lanes_wide.h>
 
 #include <algorithm>
 

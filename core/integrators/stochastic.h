@@ -2,8 +2,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/random.h"
-#include "core/tracer.h"
+#include <refract/core/random.h>
+#include <refract/core/tracer.h>
 
 namespace refract {
 

@@ -1,11 +1,11 @@
-#include "core/integrators/whitted.h"
+#include <refract/core/integrators/whitted.h>
 
 #include <optional>
 #include <vector>
 
-#include "core/integrators/integrator.h"
-#include "core/integrators/spectral.h"
-#include "core/ray_tree.h"
+#include <refract/core/integrators/integrator.h>
+#include <refract/core/integrators/spectral.h>
+#include <refract/core/ray_tree.h>
 
 namespace refract {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-#include "core/tracer.h"
+#include <refract/core/tracer.h>
 
 namespace refract {
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <string>
 
-#include "core/material_rules.h"
-#include "geometry/error.h"
+#include <refract/core/material_rules.h>
+#include <refract/geometry/error.h>
 
 namespace refract::material {
 

@@ -2,7 +2,7 @@
 // A diffuse surface, POV-Ray's convention: ambient·pigment + Σ diffuse·pigment·light·
 // max(0, N·L)·shadow. A leaf of every ray tree; the stochastic integrator ends its path
 // there with that light too.
-#include "core/material_rules.h"
+#include <refract/core/material_rules.h>
 
 namespace refract::material {
 

@@ -1,7 +1,7 @@
 #pragma once
 // A highlight light: a surface that shines `color` (tens of times brighter than lights). A
 // leaf; it casts no shadow (POV-Ray's no_shadow).
-#include "core/material_rules.h"
+#include <refract/core/material_rules.h>
 
 namespace refract::material {
 

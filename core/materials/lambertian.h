@@ -2,7 +2,7 @@
 // RTIOW's Lambertian: a random diffuse bounce with albedo `pigment` in the stochastic
 // integrator; the tree integrators light it directly, as a diffuse surface with diffuse 1
 // and ambient 0.
-#include "core/material_rules.h"
+#include <refract/core/material_rules.h>
 
 namespace refract::material {
 

@@ -1,7 +1,7 @@
 #pragma once
 // RTIOW's metal: reflection with fuzz, albedo `color`. The stochastic integrator samples
 // the fuzz; the tree integrators take the mirror direction.
-#include "core/material_rules.h"
+#include <refract/core/material_rules.h>
 
 namespace refract::material {
 

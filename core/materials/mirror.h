@@ -2,7 +2,7 @@
 // A perfect mirror of reflectivity `color`: one branch, the mirror direction. A perfect
 // conductor for exact polarisation: rs = −1, rp = +1 at every angle (the η → ∞ limit of
 // Hecht's amplitudes), Mueller matrix diag(1, 1, −1, −1) in the s/p frames.
-#include "core/material_rules.h"
+#include <refract/core/material_rules.h>
 
 namespace refract::material {
 

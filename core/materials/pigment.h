@@ -3,8 +3,8 @@
 // `checker`), and its scene-file form.
 #include <optional>
 
-#include "core/json_reader.h"
-#include "geometry/ray.h"
+#include <refract/core/json_reader.h>
+#include <refract/geometry/ray.h>
 
 namespace refract {
 

@@ -6,7 +6,7 @@
 // eye pass), the physical mode, and one ray at a time (no packets).
 #include <string>
 
-#include "core/material_rules.h"
+#include <refract/core/material_rules.h>
 
 namespace refract::material {
 

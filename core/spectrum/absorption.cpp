@@ -1,4 +1,4 @@
-#include "core/spectrum/absorption.h"
+#include <refract/core/spectrum/absorption.h>
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/optics.h"
-#include "geometry/error.h"
+#include <refract/core/optics.h>
+#include <refract/geometry/error.h>
 
 namespace refract::spectrum {
 

@@ -1,5 +1,5 @@
 // CIE 1931 colorimetry (see cie.h, docs/spectra.md).
-#include "core/spectrum/cie.h"
+#include <refract/core/spectrum/cie.h>
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 
 #include <Eigen/LU>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract::spectrum {
 

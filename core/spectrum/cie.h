@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "core/spectrum/wavelengths.h"
-#include "geometry/ray.h"
+#include <refract/core/spectrum/wavelengths.h>
+#include <refract/geometry/ray.h>
 
 namespace refract::spectrum {
 

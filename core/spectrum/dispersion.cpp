@@ -1,5 +1,5 @@
 // Dispersion laws, material catalogue and POV-Ray's bands (see dispersion.h, docs/spectra.md).
-#include "core/spectrum/dispersion.h"
+#include <refract/core/spectrum/dispersion.h>
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract::spectrum {
 

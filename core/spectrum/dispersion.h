@@ -12,7 +12,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "geometry/ray.h"
+#include <refract/geometry/ray.h>
 
 namespace refract::spectrum {
 

@@ -1,5 +1,5 @@
 // Wavelength sampling and light-source spectra (see wavelengths.h, docs/spectra.md).
-#include "core/spectrum/wavelengths.h"
+#include <refract/core/spectrum/wavelengths.h>
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/error.h"
+#include <refract/geometry/error.h>
 
 namespace refract::spectrum {
 

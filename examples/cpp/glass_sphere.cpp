@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/optics.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/trace_record.h"
+#include <refract/core/optics.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/trace_record.h>
 
 int main() {
     using namespace refract;

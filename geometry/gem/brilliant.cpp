@@ -12,8 +12,8 @@
 #include <cmath>
 #include <map>
 
-#include "geometry/error.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/geometry/error.h>
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract {
 namespace {

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/shapes.h"
+#include <refract/geometry/shapes.h>
 
 namespace refract {
 

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <map>
 
-#include "geometry/error.h"
-#include "geometry/format.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract {
 namespace {

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
-#include "geometry/format.h"
-#include "geometry/gem/gem_io.h"
+#include <refract/geometry/atomic_file.h>
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/geometry/gem/gem_io.h>
 
 namespace refract {
 namespace {

@@ -8,7 +8,7 @@
 // Files are written to a temporary name beside the target and renamed: never half-written.
 #include <string>
 
-#include "geometry/gem/brilliant.h"
+#include <refract/geometry/gem/brilliant.h>
 
 namespace refract {
 

@@ -3,9 +3,9 @@
 // instruction set (geometry/simd.h). Each plane's arithmetic is the slab loop's
 // ((n_x v_x + n_y v_y) + n_z v_z, d − n·o, their quotient) without contraction into FMA, so
 // equal inputs give equal bits.
-#include "geometry/lanes.h"
-#include "geometry/simd.h"
-#include "geometry/simd/batch.h"
+#include <refract/geometry/lanes.h>
+#include <refract/geometry/simd.h>
+#include <refract/geometry/simd/batch.h>
 
 namespace refract::simd {
 

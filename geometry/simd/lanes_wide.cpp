@@ -2,9 +2,9 @@
 // doubles (geometry/simd/batch.h), compiled once per instruction set (geometry/simd.h). The
 // arithmetic is LaneVec3's: the squared norm added x, y, z left to right, the correctly
 // rounded square root, three divisions; compiled without contraction into FMA.
-#include "geometry/lanes.h"
-#include "geometry/simd.h"
-#include "geometry/simd/batch.h"
+#include <refract/geometry/lanes.h>
+#include <refract/geometry/simd.h>
+#include <refract/geometry/simd/batch.h>
 
 namespace refract::simd {
 

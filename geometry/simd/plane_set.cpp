@@ -32,8 +32,8 @@
 #include <cstring>
 #include <limits>
 
-#include "geometry/simd.h"
-#include "geometry/simd/batch.h"
+#include <refract/geometry/simd.h>
+#include <refract/geometry/simd/batch.h>
 
 namespace refract::simd {
 

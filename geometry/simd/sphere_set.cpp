@@ -6,9 +6,9 @@
 // operation, without contraction into FMA.
 #include <limits>
 
-#include "geometry/shapes.h"
-#include "geometry/simd.h"
-#include "geometry/simd/batch.h"
+#include <refract/geometry/shapes.h>
+#include <refract/geometry/simd.h>
+#include <refract/geometry/simd/batch.h>
 
 namespace refract::simd {
 

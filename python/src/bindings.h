@@ -15,9 +15,9 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "core/fields.h"
-#include "core/image.h"
-#include "geometry/ray.h"
+#include <refract/core/fields.h>
+#include <refract/core/image.h>
+#include <refract/geometry/ray.h>
 
 namespace refract::python {
 

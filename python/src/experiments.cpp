@@ -3,8 +3,8 @@
 // python/src/bindings.h): dicts, lists and NumPy arrays with the names the CSV files use.
 #include <pybind11/stl.h>
 
-#include "experiments/drivers.h"
-#include "geometry/error.h"
+#include <refract/experiments/drivers.h>
+#include <refract/geometry/error.h>
 #include "python/src/bindings.h"
 
 namespace refract::python {

@@ -5,9 +5,9 @@
 #include <functional>
 #include <map>
 
-#include "experiments/gem_metrics.h"
-#include "geometry/error.h"
-#include "geometry/gem/brilliant.h"
+#include <refract/experiments/gem_metrics.h>
+#include <refract/geometry/error.h>
+#include <refract/geometry/gem/brilliant.h>
 #include "python/src/bindings.h"
 
 namespace refract::python {

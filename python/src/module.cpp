@@ -13,11 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/image.h"
-#include "core/render.h"
-#include "core/scene_json.h"
-#include "core/trace_record.h"
-#include "geometry/error.h"
+#include <refract/core/image.h>
+#include <refract/core/render.h>
+#include <refract/core/scene_json.h>
+#include <refract/core/trace_record.h>
+#include <refract/geometry/error.h>
 #include "python/src/bindings.h"
 
 namespace refract::python {

@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/optics.h"
-#include "core/spectrum/dispersion.h"
-#include "geometry/error.h"
+#include <refract/core/optics.h>
+#include <refract/core/spectrum/dispersion.h>
+#include <refract/geometry/error.h>
 #include "python/src/bindings.h"
 
 namespace refract::python {

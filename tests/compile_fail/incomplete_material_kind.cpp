@@ -1,6 +1,6 @@
 // Must NOT compile: a material kind that lacks rules, checked as Material::Kind checks its
 // kinds. The build names what it lacks (the ctest entry expects "lacks shadow_filter").
-#include "core/material.h"
+#include <refract/core/material.h>
 
 namespace incomplete {
 
