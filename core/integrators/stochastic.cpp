@@ -49,99 +49,137 @@ std::optional<Vec3> bounce(const SceneTracer& tracer, const SurfaceHit& hit, con
     return next->dir;
 }
 
-}  // namespace
-
-Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng, RenderStats& stats) {
-    Path p;
-    Ray ray = primary;
-    for (int depth = 0;; ++depth) {
-        const auto hit = tracer.intersect(ray, stats);
-        if (!hit) return p.radiance + p.throughput.cwiseProduct(tracer.background(ray.dir));
-        const auto next = bounce(tracer, *hit, ray, depth, p, rng, stats);
-        if (!next) return p.radiance;
-        ray = Ray{hit->hit.point, next->normalized()};
-    }
+// The nearest hits of the paths' rays: one ray's, or a packet's (no ray leaves a known hit:
+// the paths' rays are searched afresh, as RTIOW's).
+std::optional<SurfaceHit> search(const SceneTracer& tracer, const Vec3& origin, const Vec3& dir, bool, RenderStats& stats) {
+    return tracer.intersect(Ray{origin, dir}, stats);
+}
+SceneTracer::LaneHits search(const SceneTracer& tracer, const LaneVec3& origin, const LaneVec3& dir, const LaneMask& on,
+                             RenderStats& stats) {
+    return tracer.intersect_lanes(origin, dir, on, SceneTracer::LaneOrigins{}, stats);
+}
+bool met(const std::optional<SurfaceHit>& h, int) { return h.has_value(); }
+bool met(const SceneTracer::LaneHits& h, int l) { return h.hit[l]; }
+SurfaceHit hit_of(const SceneTracer&, const std::optional<SurfaceHit>& h, int) { return *h; }
+SurfaceHit hit_of(const SceneTracer& tracer, const SceneTracer::LaneHits& h, int l) { return tracer.surface_hit(h, l); }
+// Eigen's normalized() of the bounced directions (a zero vector stays as it is): one ray's,
+// or every lane of a packet at once on the widest vector instructions.
+void normalize(Vec3& dir, bool bounced) {
+    if (bounced) dir = dir.normalized();
+}
+void normalize(LaneVec3& dir, const LaneMask& bounced) {
+    if (bounced.any()) normalize_lanes(dir, bounced);
 }
 
-void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::function<Ray(int, Rng&)>& start,
-                                 std::vector<Vec3>& out, RenderStats& stats) {
+// The paths of n samples, one at a time (S = double) or kLanes at a time (S = Lanes): each
+// step searches the paths' rays together, then each path takes its own bounce, so that the
+// paths' dependency chains overlap; a lane whose path ends takes the next sample.
+// `start(k, rng)` sets rng to sample k's stream and gives its primary ray; out[k] is
+// sample k's light. Every path's light and random stream are the same whatever S.
+template <class S>
+void walk_paths(const SceneTracer& tracer, int n, const std::function<Ray(int, Rng&)>& start, std::vector<Vec3>& out,
+                RenderStats& stats, Rng* last_rng = nullptr) {
+    constexpr int W = Width<S>::kLanes;
     out.assign(static_cast<size_t>(std::max(n, 0)), Vec3::Zero());
-    std::array<Path, kLanes> p;
-    std::array<Rng, kLanes> rng;
-    std::array<int, kLanes> depth{}, sample{};
-    LaneVec3 origin, dir;
-    LaneMask on;
+    std::array<Path, W> p;
+    std::array<Rng, W> rng;
+    std::array<int, W> depth{}, sample{};
+    VecOf<S> origin, dir;
+    MaskOf<S> on = all_lanes<S>(false);
     int next_sample = 0;
     // Lane l takes the next sample (or goes idle when none is left).
     const auto fill = [&](int l) {
         const size_t i = static_cast<size_t>(l);
-        on[l] = next_sample < n;
-        if (!on[l]) return;
+        const bool more = next_sample < n;
+        if constexpr (kPacketOf<S>) {
+            on[l] = more;
+        } else {
+            on = more;
+        }
+        if (!more) return;
         sample[i] = next_sample;
         const Ray r = start(next_sample++, rng[i]);
         p[i] = Path{};
         depth[i] = 0;
-        origin.set(l, r.origin);
-        dir.set(l, r.dir);
+        set_lane(origin, l, r.origin);
+        set_lane(dir, l, r.dir);
     };
-    for (int l = 0; l < kLanes; ++l) fill(l);
-    const SceneTracer::LaneOrigins none{};
-    while (on.any()) {
-        const SceneTracer::LaneHits h = tracer.intersect_lanes(origin, dir, on, none, stats);
-        LaneMask bounced;  // the lanes whose new direction is to be normalised
-        for (int l = 0; l < kLanes; ++l) {
-            if (!on[l]) continue;
+    for (int l = 0; l < W; ++l) fill(l);
+    while (any(on)) {
+        const auto h = search(tracer, origin, dir, on, stats);
+        MaskOf<S> bounced = all_lanes<S>(false);  // the lanes whose new direction is to be normalised
+        for_each_lane(MaskOf<S>(on), [&](int l) {
             const size_t i = static_cast<size_t>(l);
-            const Ray ray{origin.lane(l), dir.lane(l)};
-            if (!h.hit[l]) {
+            const Ray ray{lane_of(origin, l), lane_of(dir, l)};
+            if (!met(h, l)) {
                 out[static_cast<size_t>(sample[i])] = p[i].radiance + p[i].throughput.cwiseProduct(tracer.background(ray.dir));
+                if (last_rng) *last_rng = rng[i];
                 fill(l);
-                continue;
+                return;
             }
-            const auto next = bounce(tracer, tracer.surface_hit(h, l), ray, depth[i], p[i], rng[i], stats);
+            const SurfaceHit hl = hit_of(tracer, h, l);
+            const auto next = bounce(tracer, hl, ray, depth[i], p[i], rng[i], stats);
             if (!next) {
                 out[static_cast<size_t>(sample[i])] = p[i].radiance;
+                if (last_rng) *last_rng = rng[i];
                 fill(l);
-                continue;
+                return;
             }
             ++depth[i];
-            origin.set(l, h.point.lane(l));
-            dir.set(l, *next);
-            bounced[l] = true;
-        }
-        // Eigen's normalized() on every lane at once (a zero vector stays as it is).
-        if (bounced.any()) normalize_lanes(dir, bounced);
+            set_lane(origin, l, hl.hit.point);
+            set_lane(dir, l, *next);
+            if constexpr (kPacketOf<S>) {
+                bounced[l] = true;
+            } else {
+                bounced = true;
+            }
+        });
+        normalize(dir, bounced);
+    }
+}
+
+}  // namespace
+
+Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng, RenderStats& stats) {
+    std::vector<Vec3> out;
+    walk_paths<double>(
+        tracer, 1,
+        [&](int, Rng& r) {
+            r = rng;
+            return primary;
+        },
+        out, stats, &rng);
+    return out[0];
+}
+
+void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::function<Ray(int, Rng&)>& start,
+                                 std::vector<Vec3>& out, RenderStats& stats) {
+    if (tracer.packets()) {
+        walk_paths<Lanes>(tracer, n, start, out, stats);
+    } else {
+        walk_paths<double>(tracer, n, start, out, stats);
     }
 }
 
 namespace {
 
-// RTIOW's paths: each sample's path walked alone, or the samples of a pixel kLanes paths at
-// a time (the tracer's packets), summed in sample order (the same sum).
+// RTIOW's paths: the samples of a pixel walked one at a time, or kLanes paths at a time (the
+// tracer's packets), summed in sample order (the same sum).
 class Stochastic : public Integrator {
 public:
     using Integrator::Integrator;
     Vec3 pixel(int i, int j, RenderStats& stats, std::vector<double>*) const override {
         const int n = tracer_.settings().samples;
+        thread_local std::vector<Vec3> values;
+        stochastic_radiance_samples(
+            tracer_, n,
+            [&](int k, Rng& rng) {
+                ++stats.primary_rays;
+                return sample_ray(i, j, k, rng);
+            },
+            values, stats);
         Vec3 sum(0, 0, 0);
-        if (tracer_.packets()) {
-            thread_local std::vector<Vec3> values;
-            stochastic_radiance_samples(
-                tracer_, n,
-                [&](int k, Rng& rng) {
-                    ++stats.primary_rays;
-                    return sample_ray(i, j, k, rng);
-                },
-                values, stats);
-            for (const Vec3& v : values) sum += v;
-            return Vec3(sum / n);
-        }
-        for (int k = 0; k < n; ++k) {
-            Rng rng;
-            const Ray ray = sample_ray(i, j, k, rng);
-            ++stats.primary_rays;
-            sum += stochastic_radiance(tracer_, ray, rng, stats);
-        }
+        for (const Vec3& v : values) sum += v;
         return Vec3(sum / n);
     }
 };

@@ -13,10 +13,10 @@ namespace refract {
 // Many samples per pixel average to the tree's value. Seeded and deterministic.
 Vec3 stochastic_radiance(const SceneTracer& tracer, const Ray& primary, Rng& rng, RenderStats& stats);
 
-// The same for the n samples of a pixel, kLanes paths at a time: each bounce searches the
-// paths' rays together (SceneTracer::intersect_lanes), then each path takes its own bounce,
-// so that the paths' dependency chains overlap; a lane whose path ends takes the next
-// sample. `start(k, rng)` sets rng to sample k's stream and gives its primary ray. out[k] is
+// The same for the n samples of a pixel, by the one path loop: kLanes paths at a time where
+// the tracer walks packets (one at a time otherwise): each bounce searches the paths' rays
+// together, then each path takes its own bounce, so that the paths' dependency chains
+// overlap; a lane whose path ends takes the next sample. `start(k, rng)` sets rng to sample k's stream and gives its primary ray. out[k] is
 // stochastic_radiance(tracer, that ray, rng k, stats) to the last bit.
 void stochastic_radiance_samples(const SceneTracer& tracer, int n, const std::function<Ray(int, Rng&)>& start,
                                  std::vector<Vec3>& out, RenderStats& stats);
