@@ -77,41 +77,28 @@ struct PhotonEnds {
     // A packet walk's lanes all deposit here (fixed point: in any order).
     PhotonEnds& lane(int) { return *this; }
 
-    bool intercept(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, typename RayTreeWalkerT<P>::List& list) {
+    bool intercept(RayTreeWalkerT<P>& w, const Entry& e, const SurfaceHit& h, typename RayTreeWalkerT<P>::List&) {
         const size_t mi = static_cast<size_t>(h.object->material);
         if (e.band >= 0 || !ctx.dispersive[mi]) return false;
-        // First transparent hit: one ray per band, each with the band's weight.
+        // First transparent hit: one ray per band, each with the band's weight, the bands kLanes
+        // at a time where the tracer walks packets (the same deposits, whose sums do not depend
+        // on the order).
         const std::vector<int>& bands = ctx.split_bands[mi];
-        const auto band_interaction = [&](int k) {
-            const size_t kb = static_cast<size_t>(k);
-            return w.tracer().interact(h, e.ray, stats, ctx.index[kb][mi], false, e.wave, ctx.all_wavelengths[kb]);
-        };
-        if constexpr (std::is_same_v<P, NaturalLight>) {
-            if (w.tracer().packets()) {
-                // The bands kLanes at a time: the same deposits, whose sums do not depend on the order.
-                w.walk_bands(
-                    static_cast<int>(bands.size()),
-                    [&](auto& s, int i) {
-                        const int k = bands[static_cast<size_t>(i)];
-                        const Interaction in = band_interaction(k);
-                        for (int b = 0; b < in.branches && b < 2; ++b)
-                            s.push(e, h, in.branch[static_cast<size_t>(b)], in.transmitted[static_cast<size_t>(b)],
-                                   ctx.weights[static_cast<size_t>(k)], k);
-                    },
-                    *this,
-                    [&](int, const LossesT<double>& lost) {
-                        stats.lost_depth += lost.depth;
-                        stats.lost_limits += lost.limits;
-                        stats.lost_threshold += lost.threshold;
-                    });
-                return true;
-            }
-        }
-        for (const int k : bands) {
-            const Interaction in = band_interaction(k);
-            for (int b = 0; b < in.branches; ++b)
-                w.push(e, h, in, b, in.transmitted[static_cast<size_t>(b)], list, ctx.weights[static_cast<size_t>(k)], k);
-        }
+        w.walk_bands(
+            static_cast<int>(bands.size()),
+            [&](auto& s, int i) {
+                const int k = bands[static_cast<size_t>(i)];
+                const size_t kb = static_cast<size_t>(k);
+                const Interaction in =
+                    w.tracer().interact(h, e.ray, stats, ctx.index[kb][mi], false, e.wave, ctx.all_wavelengths[kb]);
+                for (int b = 0; b < in.branches; ++b) s.push(e, h, in, b, ctx.weights[kb], k);
+            },
+            *this,
+            [&](int, const LossesT<double>& lost) {
+                stats.lost_depth += lost.depth;
+                stats.lost_limits += lost.limits;
+                stats.lost_threshold += lost.threshold;
+            });
         return true;
     }
 };

@@ -6,7 +6,7 @@
 //
 // Adding a kind: core/materials/NAME.h (the struct, its scene-file form, its rules), its
 // entry in Material::Kind below, and its POV-Ray export or refusal
-// (validation/pov_export.cpp).
+// (the POV-Ray exporter, validation/).
 #include <string>
 #include <variant>
 

@@ -296,16 +296,12 @@ public:
         // reflected branch first, a transmitted one after it.
         void push(const Entry& e, const SurfaceHit& h, const Branch& br, bool transmitted, const Vec3& tint, int band) {
             static const polar::Mueller none = polar::Mueller::Identity();  // natural light: not read
-            if (!lost_) {
-                w_.push(e, h, br, none, transmitted, *list_, tint, band);
-                return;
-            }
-            pushed_ = true;
-            Entry c;
-            const Extra x{tint, band, &none, br.wave, &br.frame_parent, &br.frame_child};
-            const Sink one{&lost_->depth[lane_], &lost_->limits[lane_], &lost_->threshold[lane_]};
-            if (w_.make_child(c, e, h, br.ray.dir, br.factor, br.bailout_factor, transmitted, x, one))
-                children_[transmitted ? 1 : 0].set(lane_, c);
+            push(e, h, br, none, transmitted, tint, band);
+        }
+        // The same for branch b of interaction `in` (its Mueller matrix with exact polarisation).
+        void push(const Entry& e, const SurfaceHit& h, const Interaction& in, int b, const Vec3& tint, int band) {
+            const size_t k = static_cast<size_t>(b);
+            push(e, h, in.branch[k], in.mueller[k], in.transmitted[k], tint, band);
         }
 
     private:
@@ -313,6 +309,19 @@ public:
         BandSeed(RayTreeWalkerT& w, List& list) : w_(w), list_(&list) {}
         BandSeed(RayTreeWalkerT& w, LaneLosses& lost) : w_(w), lost_(&lost) {}
 
+        void push(const Entry& e, const SurfaceHit& h, const Branch& br, const polar::Mueller& M, bool transmitted,
+                  const Vec3& tint, int band) {
+            if (!lost_) {
+                w_.push(e, h, br, M, transmitted, *list_, tint, band);
+                return;
+            }
+            pushed_ = true;
+            Entry c;
+            const Extra x{tint, band, &M, br.wave, &br.frame_parent, &br.frame_child};
+            const Sink one{&lost_->depth[lane_], &lost_->limits[lane_], &lost_->threshold[lane_]};
+            if (w_.make_child(c, e, h, br.ray.dir, br.factor, br.bailout_factor, transmitted, x, one))
+                children_[transmitted ? 1 : 0].set(lane_, c);
+        }
         void take(const Entry& e, const SurfaceHit& h, bool absorb, double band_ior) {
             hit_ = h;
             absorb_ = absorb;
