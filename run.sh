@@ -46,12 +46,15 @@ sanitize() {
 # The fuzzing build (build-fuzz/, clang): the libFuzzer target, with geometry/ and core/
 # instrumented for it and built with AddressSanitizer and UndefinedBehaviorSanitizer. Clang
 # and its runtime libraries are installed only here.
+# The libFuzzer target (clang, ASan, UBSan): `fuzz_build DIR TYPE` builds it in DIR with
+# CMAKE_BUILD_TYPE TYPE. The test path builds it unoptimised in build-fuzz-check/ (that it
+# still compiles and links with clang, quickly); `fuzz` builds and runs it optimised.
 fuzz_build() {
     PACKAGES+=(clang libclang-rt-14-dev)
     install_missing
-    CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREFRACT_FUZZ=ON \
+    CXX=clang++ cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE="$2" -DREFRACT_FUZZ=ON \
         -DREFRACT_BUILD_TESTS=OFF >/dev/null
-    cmake --build build-fuzz -j "$(nproc)" --target scene_fuzzer
+    cmake --build "$1" -j "$(nproc)" --target scene_fuzzer
 }
 
 build() {
@@ -71,7 +74,7 @@ case "${1:-}" in
         build
         ctest --test-dir build --output-on-failure -j "$(nproc)"
         [ "${REFRACT_SKIP_SANITIZE:-0}" = 1 ] || sanitize
-        [ "${REFRACT_SKIP_FUZZ_BUILD:-0}" = 1 ] || fuzz_build
+        [ "${REFRACT_SKIP_FUZZ_BUILD:-0}" = 1 ] || fuzz_build build-fuzz-check Debug
         ;;
     sanitize)
         install_missing
@@ -82,7 +85,7 @@ case "${1:-}" in
         build
         ;;
     fuzz)
-        fuzz_build
+        fuzz_build build-fuzz RelWithDebInfo
         mkdir -p build-fuzz/corpus build-fuzz/findings
         ./build-fuzz/fuzz/scene_fuzzer -max_total_time="${2:-60}" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
             -artifact_prefix=build-fuzz/findings/ build-fuzz/corpus scenes/examples scenes/validation

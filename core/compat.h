@@ -55,7 +55,7 @@ public:
                                bool split) const {
         if (pov_) return povray::dielectric_branches(m, at, adc_, split);
         return physical_branches(dielectric_node(at.dir, at.normal, at.eta, m.reflectance,
-                                                 typename V::Scalar(m.constant_reflectivity), filter));
+                                                 typename V::Scalar(m.constant_reflectivity), filter, at.on));
     }
     // The index a dielectric's `ior` refracts with (POV-Ray: single precision).
     double nominal_index(double ior) const { return pov_ ? povray::stored_index(ior) : ior; }

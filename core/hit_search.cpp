@@ -243,7 +243,12 @@ std::optional<HitSearch::Blocker> HitSearch::shadow_blocker(const Ray& ray, doub
 
 // The state of one packet's in-order search (intersect_lanes): each lane's best hit so far
 // and the object it is on.
+// The search writes into the caller's result; nothing is zeroed that is set before use.
 struct HitSearch::LaneSearch {
+    LaneSearch(const LaneVec3& origin_, const LaneVec3& dir_, const LaneMask& active_, const LaneOrigins& from_,
+               RenderStats& stats_, double t_min_, const SphereGroup* group_, LaneHits& out_, double t_max)
+        : origin(origin_), dir(dir_), active(active_), from(from_), stats(stats_), t_min(t_min_), group(group_),
+          out(out_), best(t_max) {}
     const LaneVec3& origin;
     const LaneVec3& dir;
     const LaneMask& active;
@@ -251,15 +256,15 @@ struct HitSearch::LaneSearch {
     RenderStats& stats;
     double t_min;
     const SphereGroup* group;
-    LaneHits out;
+    LaneHits& out;
     Lanes best;
-    LaneVec3 outward;
-    std::array<size_t, kLanes> from_k{};
-    std::array<size_t, kLanes> best_k{};  // per lane, the order_ index of the best object (SIZE_MAX: none)
-    Lanes lim;                            // per lane, the bound of the object being asked
+    LaneVec3 outward;                  // per lane, where it hit: the outward normal
+    std::array<size_t, kLanes> from_k;  // per lane, the order_ index of the object it leaves
+    std::array<size_t, kLanes> best_k;  // per lane, the order_ index of the best object (SIZE_MAX: none)
+    Lanes lim;                          // per lane, the bound of the object being asked
 
     // Lane l's nearest hit so far: h, on object k.
-    void keep(int l, size_t k, const Hit& h, const Object* o) {
+    REFRACT_LANE_OP void keep(int l, size_t k, const Hit& h, const Object* o) {
         const size_t i = static_cast<size_t>(l);
         best_k[i] = k;
         best[l] = h.t;
@@ -270,7 +275,7 @@ struct HitSearch::LaneSearch {
         out.facet[i] = h.facet;
     }
     // A hit of object k in the lanes of `m` (t, point, outward normal; facet -1).
-    void take(size_t k, const LaneMask& m, const LaneShapeHits& h, const Object* o) {
+    REFRACT_LANE_OP void take(size_t k, const LaneMask& m, const LaneShapeHits& h, const Object* o) {
         if (!m.any()) return;
         for_each_lane(m, [&](int l) { best_k[static_cast<size_t>(l)] = k; });
         best = select(m, h.t, best);
@@ -288,7 +293,7 @@ struct HitSearch::LaneSearch {
         });
     }
     // The lanes leaving object k.
-    LaneMask leaving(size_t k) const {
+    REFRACT_LANE_OP LaneMask leaving(size_t k) const {
         LaneMask m;
         for (int l = 0; l < kLanes; ++l) m[l] = active[l] && from_k[static_cast<size_t>(l)] == k;
         return m;
@@ -302,8 +307,8 @@ void HitSearch::lanes_on(const OtherShape&, size_t k, LaneSearch& q) const {
 
 HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const LaneVec3& dir, const LaneMask& active,
                                                const LaneOrigins& from, RenderStats& stats) const {
-    LaneSearch q{origin, dir, active, from, stats, t_min_, spheres_ ? &*spheres_ : nullptr, {}, Lanes(t_max_), {}, {}, {}, {}};
-    LaneHits& out = q.out;
+    LaneHits out;
+    LaneSearch q(origin, dir, active, from, stats, t_min_, spheres_ ? &*spheres_ : nullptr, out, t_max_);
     out.hit = LaneMask::Constant(false);
     out.entering = LaneMask::Constant(false);
     out.facet.fill(-1);
@@ -369,7 +374,7 @@ HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const Lan
     if (!out.hit.any()) return out;
     // As intersect(): entering where the outward normal faces the ray, the normal turned to
     // the incident side.
-    out.entering = q.outward.dot(dir) < Lanes(0.0);
+    out.entering = out.hit && (q.outward.dot(dir) < Lanes(0.0));
     out.normal = select(out.entering, q.outward, -q.outward);
     return out;
 }

@@ -104,6 +104,15 @@ struct Scatter {
 // The mask type of a scalar (bool for doubles and counting scalars, LaneMask for Lanes).
 template <class S>
 using MaskFor = decltype(std::declval<S>() >= std::declval<S>());
+// The mask of the scalar type with every lane set (one ray: true).
+template <class S>
+MaskFor<S> every_lane() {
+    if constexpr (std::is_same_v<MaskFor<S>, bool>) {
+        return true;
+    } else {
+        return MaskFor<S>::Constant(true);
+    }
+}
 
 // m ? a() : b(): one ray evaluates the branch it takes; a packet evaluates both and blends
 // (geometry/width.h select), each lane getting the one-ray answer.
@@ -111,7 +120,9 @@ template <class M, class A, class B>
 auto choose(const M& m, A&& a, B&& b) {
     if constexpr (std::is_same_v<M, bool>) {
         return m ? a() : b();
-    } else {
+    } else {  // only the side the lanes take, when they all take one
+        if (!(!m).any()) return decltype(select(m, a(), b()))(a());
+        if (!m.any()) return decltype(select(m, a(), b()))(b());
         return select(m, a(), b());
     }
 }
@@ -204,13 +215,16 @@ struct DielectricNode {
 
 template <class V>
 DielectricNode<V> dielectric_node(const V& dir, const V& normal, typename V::Scalar eta, ReflectanceModel model,
-                                  typename V::Scalar constant, const V& filter) {
+                                  typename V::Scalar constant, const V& filter,
+                                  const MaskFor<typename V::Scalar>& on = every_lane<typename V::Scalar>()) {
     using S = typename V::Scalar;
     const DielectricTerms<S> t = dielectric_terms(dir, normal, eta, model, constant);
-    DielectricNode<V> n{reflected_unit(dir, normal), V(), t.R, V(), S(0.0), t.tir};
-    if constexpr (std::is_same_v<MaskFor<S>, bool>) {
-        if (t.tir) return n;
-    }
+    DielectricNode<V> n;  // `refracted` and `transmit_factor` set only where light refracts
+    n.reflected = reflected_unit(dir, normal);
+    n.R = t.R;
+    n.transmit_bailout = S(0.0);
+    n.tir = t.tir;
+    if (!any(on && !t.tir)) return n;  // every ray `on` reflected totally: nothing refracts
     n.transmit_factor = (S(1.0) - t.R) * filter;
     n.transmit_bailout = max_coeff(n.transmit_factor);
     n.refracted = refracted_unit(dir, normal, t, eta);
@@ -254,6 +268,7 @@ struct NodeAt {
     S t;
     MaskFor<S> entering;
     S eta, eta_nominal;
+    MaskFor<S> on = every_lane<S>();  // the lanes at this node (the others carry anything)
 };
 // The physical node's branches.
 template <class V>

@@ -55,27 +55,36 @@ namespace refract {
 template <class P, class S = double>
 struct TreeEntryT {
     RayOf<S> ray;
-    VecOf<S> weight;    // cumulative attenuation per channel (eq. 12's coefficients)
-    S bailout = S(1.0);  // the scalar the threshold is compared with
+    VecOf<S> weight;  // cumulative attenuation per channel (eq. 12's coefficients)
+    S bailout;        // the scalar the threshold is compared with (a root: 1)
     // Counters in 16 bits (max_depth <= 10000, bands <= 1003): an entry of the
     // natural-light walk of one ray is 112 bytes.
     std::int16_t depth = 0;  // surface interactions before this ray
-    EachOf<S, std::int16_t> reflections{}, transmissions{};
-    EachOf<S, std::int16_t> band = EachOf<S, std::int16_t>{};  // spectral band; −1: an RGB ray
+    EachOf<S, std::int16_t> reflections, transmissions;
+    EachOf<S, std::int16_t> band;               // spectral band; −1: an RGB ray
     biref::Wave wave = biref::Wave::Isotropic;  // inside a uniaxial crystal: o or e
-    S travelled = S(0.0);  // path length from the tree's root to this ray's origin
-    [[no_unique_address]] P pol{};  // polarisation payload (none for natural light)
-    EachOf<S, RayOrigin> from{};    // the hit this ray leaves (none for a root)
+    S travelled;                                // path length from the tree's root to this ray's origin
+    [[no_unique_address]] P pol{};              // polarisation payload (none for natural light)
+    EachOf<S, RayOrigin> from;                  // the hit this ray leaves (none for a root)
     // Packets: the lanes in use (the others carry anything).
     struct AllLanes {};
     [[no_unique_address]] std::conditional_t<kPacketOf<S>, MaskOf<S>, AllLanes> active{};
 
+    // One ray: a root's values. A packet: no lane in use, and nothing else written (a packet
+    // is filled lane by lane, or as a whole, before it is read).
     TreeEntryT() {
-        if constexpr (!kPacketOf<S>) band = -1;
+        if constexpr (!kPacketOf<S>) {
+            bailout = 1.0;
+            reflections = transmissions = 0;
+            band = -1;
+            travelled = 0.0;
+            from = RayOrigin{};
+        }
     }
-    TreeEntryT(const Ray& r, const Vec3& w) : ray(r), weight(w) {
+    TreeEntryT(const Ray& r, const Vec3& w) : TreeEntryT() {
         static_assert(!kPacketOf<S>, "a packet is filled lane by lane");
-        band = -1;
+        ray = r;
+        weight = w;
     }
 
     // Packets: lane l as a one-ray entry, and lane l set from one.
@@ -152,6 +161,10 @@ public:
     size_t size() const { return items_.size() - head_; }
     T& front() { return items_[head_]; }
     void push_back(const T& t) { items_.push_back(t); }
+    // Room for n more entries: front() stays where it is through n push_back()s.
+    void reserve_more(size_t n) {
+        if (items_.capacity() < items_.size() + n) items_.reserve(2 * (items_.size() + n));
+    }
     void pop_front() {
         if (++head_ == items_.size()) {
             items_.clear();
@@ -205,11 +218,21 @@ public:
         while (!list.empty()) {
             if (list.size() > TreeLimits::kMaxEntries || ++walked > TreeLimits::kMaxSegments)
                 tree_too_large(tracer_.scene(), list.size() > TreeLimits::kMaxEntries);
-            // ⑤ take the oldest entry and find its first surface.
-            TreeEntryT<P, S> e = list.front();
-            list.pop_front();
-            const auto h = search(e);
-            if (met(e, h, ends)) arrive(e, h, list, ends);
+            // ⑤ take the oldest entry and find its first surface. A packet stays in place
+            // until its children (two at most) are queued; a ray is copied out, as its
+            // callbacks may queue many.
+            if constexpr (kPacketOf<S>) {
+                list.reserve_more(2);
+                TreeEntryT<P, S>& e = list.front();
+                const auto h = search(e);
+                if (met(e, h, ends)) arrive(e, h, list, ends);
+                list.pop_front();
+            } else {
+                TreeEntryT<P, S> e = list.front();
+                list.pop_front();
+                const auto h = search(e);
+                if (met(e, h, ends)) arrive(e, h, list, ends);
+            }
             if (list.size() > peak) peak = list.size();
         }
         if constexpr (!kPacketOf<S>) {  // the longest list of one ray's tree
@@ -374,7 +397,7 @@ private:
     // entries along the same ray: the far field's wavelengths of one photon): Beer–Lambert
     // over the segment inside, then the callback's intercept, then the node.
     template <class S, class H, class Ends>
-    void arrive(TreeEntryT<P, S> e, const H& h, FifoList<TreeEntryT<P, S>>& list, Ends& ends) {
+    void arrive(TreeEntryT<P, S>& e, const H& h, FifoList<TreeEntryT<P, S>>& list, Ends& ends) {
         absorb(e, h, ends);
         if constexpr (!kPacketOf<S>) {
             if (ends.intercept(*this, e, hit_of(h), list)) return;
@@ -511,7 +534,7 @@ private:
     // through its node together, every other lane through its own interaction; the children
     // queued by branch (reflected, then transmitted).
     template <class Ends>
-    void expand_packet(const Packet& p, const LaneMask& at, const SceneTracer::LaneHits& h, Packets& list, Ends& ends,
+    __attribute__((flatten)) void expand_packet(const Packet& p, const LaneMask& at, const SceneTracer::LaneHits& h, Packets& list, Ends& ends,
                        LaneLosses& lost) {
         const int first = at.first();
         const Material* m0 = &tracer_.scene().materials[static_cast<size_t>(h.object[static_cast<size_t>(first)]->material)];
@@ -536,7 +559,7 @@ private:
     // node over lanes (CompatRules::dielectric), both children into child[0] (reflected)
     // and child[1] (refracted).
     template <class Ends>
-    void node(const Packet& p, const LaneMask& m, const SceneTracer::LaneHits& h, const Material& mat,
+    __attribute__((flatten)) void node(const Packet& p, const LaneMask& m, const SceneTracer::LaneHits& h, const Material& mat,
               const material::Dielectric& d, Packet (&child)[2], Ends& ends, LaneLosses& lost) {
         stats_.tree_nodes += static_cast<std::uint64_t>(m.count());
         const CompatRules& rules = tracer_.rules();
@@ -557,7 +580,7 @@ private:
             inverse_ior_ = Lanes(1.0) / ior_;
         }
         const NodeAt<LaneVec3> at{p.ray.dir, h.normal, h.t, h.entering, select(h.entering, ior_, inverse_ior_),
-                                  select(h.entering, Lanes(nominal), Lanes(1.0 / nominal))};
+                                  select(h.entering, Lanes(nominal), Lanes(1.0 / nominal)), m};
         const NodeBranches<LaneVec3> b = rules.dielectric(d, at, LaneVec3::broadcast(d.filter), false);
         for (int k = 0; k < 2; ++k) {
             const LaneMask on = m && b.exists[k];

@@ -32,7 +32,7 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Plane& p) {
 // intersect_lanes): the kernels of geometry/simd/facet_graph.cpp, on the widest vector
 // instructions the CPU runs, or the ones a test asked for (FacetGraph::use_isa).
 using ContradictsFn = decltype(&simd::contradicts<simd::Sse2>);
-using ContradictsLanesFn = decltype(&simd::contradicts_lanes<simd::Sse2>);
+using ContradictsLanesFn = decltype(&FacetGraph::intersect_lanes_of<simd::Sse2>);
 struct Kernels {
     ContradictsFn one;
     ContradictsLanesFn lanes;
@@ -40,9 +40,9 @@ struct Kernels {
 Kernels kernels_for(SlabIsa isa) {
     return {simd::variant<ContradictsFn>(isa, simd::contradicts<simd::Sse2>, simd::contradicts<simd::Avx2>,
                                          simd::contradicts<simd::Avx512f>),
-            simd::variant<ContradictsLanesFn>(isa, simd::contradicts_lanes<simd::Sse2>,
-                                              simd::contradicts_lanes<simd::Avx2>,
-                                              simd::contradicts_lanes<simd::Avx512f>)};
+            simd::variant<ContradictsLanesFn>(isa, &FacetGraph::intersect_lanes_of<simd::Sse2>,
+                                              &FacetGraph::intersect_lanes_of<simd::Avx2>,
+                                              &FacetGraph::intersect_lanes_of<simd::Avx512f>)};
 }
 std::atomic<ContradictsFn> one_in_use{nullptr};
 std::atomic<ContradictsLanesFn> lanes_in_use{nullptr};
@@ -51,7 +51,7 @@ ContradictsFn contradicts_fn() {
     if (!f) one_in_use.store(f = kernels_for(slab_isa()).one, std::memory_order_relaxed);
     return f;
 }
-ContradictsLanesFn contradicts_lanes_fn() {
+ContradictsLanesFn lanes_fn() {
     ContradictsLanesFn f = lanes_in_use.load(std::memory_order_relaxed);
     if (!f) lanes_in_use.store(f = kernels_for(slab_isa()).lanes, std::memory_order_relaxed);
     return f;
@@ -209,81 +209,7 @@ FacetGraph::Local FacetGraph::intersect(const ConvexPolyhedron& c, const Ray& r,
 FacetGraph::LocalLanes FacetGraph::intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& o, const LaneVec3& v,
                                                    const LaneMask& active, double t_min, const Lanes& t_max, int from,
                                                    const std::array<std::int32_t, kLanes>& guess) const {
-    LocalLanes out;
-    out.decided = out.hit = LaneMask::Constant(false);
-    out.facet.fill(-1);
-    if (!usable(from) || !(t_min >= 0)) return out;
-    // intersect()'s steps on every lane: the bounding sphere (misses_bound) ...
-    LaneMask live = active;
-    if (c.bound_radius > 0) {
-        const LaneVec3 oc = o - LaneVec3::broadcast(c.bound_center);
-        const Lanes b = oc.dot(v);
-        const Lanes q = oc.squaredNorm() - Lanes(c.bound_radius * c.bound_radius);
-        const LaneMask miss = (q > Lanes(0.0)) && ((b > Lanes(0.0)) || (q > b * b));
-        out.decided = active && miss;
-        live = active && !miss;
-    }
-    // ... the starting facet's own plane: outward rays are decided by it ...
-    const Plane& ps = c.planes[static_cast<size_t>(from)];
-    const LaneVec3 ns = LaneVec3::broadcast(ps.normal);
-    const Lanes denom_s = ns.dot(v);
-    const Lanes dist_s = Lanes(ps.offset) - ns.dot(o);
-    const LaneMask outward = live && (denom_s > Lanes(0.0));
-    out.decided = out.decided || (outward && (Lanes(t_min) >= dist_s / denom_s));
-    // ... inward ones by their guess's t, unless a plane around `from` or the guess
-    // contradicts it.
-    const double near = 0.25 * tolerance_;
-    alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes], gd[kLanes], gi[kLanes];
-    LaneMask cand = live && (denom_s < Lanes(0.0));
-    for (int l = 0; l < kLanes; ++l) {
-        const int g = guess[static_cast<size_t>(l)];
-        cand[l] = cand[l] && std::abs(dist_s[l]) <= near && usable(g);
-        const Plane& pg = c.planes[static_cast<size_t>(cand[l] ? g : from)];
-        gx[l] = pg.normal.x();
-        gy[l] = pg.normal.y();
-        gz[l] = pg.normal.z();
-        gd[l] = pg.offset;
-        gi[l] = static_cast<double>(cand[l] ? g : from);
-    }
-    if (!cand.any()) return out;
-    LaneVec3 ng;
-    for (int l = 0; l < kLanes; ++l) {
-        ng.x[l] = gx[l];
-        ng.y[l] = gy[l];
-        ng.z[l] = gz[l];
-    }
-    Lanes dg;
-    for (int l = 0; l < kLanes; ++l) dg[l] = gd[l];
-    const Lanes denom_g = ng.dot(v);
-    const Lanes t_g = (dg - ng.dot(o)) / denom_g;
-    cand = cand && (denom_g > Lanes(0.0)) && (t_g > Lanes(t_min));
-    if (!cand.any()) return out;
-    // The lanes of m against the first n planes of f's block (vectorised over the lanes: no
-    // padding): those it contradicts.
-    const auto contradicted = [&](int f, size_t n, std::uint32_t m) {
-        const Block& b = blocks_[static_cast<size_t>(f)];
-        return contradicts_lanes_fn()(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), n, o.x.v,
-                                      o.y.v, o.z.v, v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m);
-    };
-    std::uint32_t bad = contradicted(from, blocks_[static_cast<size_t>(from)].neighbours + 1, cand.bits);
-    // Each guess's block, for the lanes that took it: its neighbours (g's own plane gives
-    // t_g itself, the same arithmetic, which never contradicts it).
-    for (std::uint32_t left = cand.bits; left != 0;) {
-        const int g = guess[static_cast<size_t>(__builtin_ctz(left))];
-        std::uint32_t same = 0;
-        for (int k = 0; k < kLanes; ++k) same |= ((left >> k) & 1u) && guess[static_cast<size_t>(k)] == g ? 1u << k : 0u;
-        left &= ~same;
-        bad |= contradicted(g, blocks_[static_cast<size_t>(g)].neighbours, same);
-    }
-    LaneMask ok;
-    ok.bits = cand.bits & ~bad;
-    out.decided = out.decided || ok;
-    out.hit = ok && (t_g < t_max);
-    for (int l = 0; l < kLanes; ++l)
-        if (ok[l]) out.facet[static_cast<size_t>(l)] = guess[static_cast<size_t>(l)];
-    out.t = t_g;
-    out.point = o + t_g * v;
-    return out;
+    return lanes_fn()(*this, c, o, v, active, t_min, t_max, from, guess);
 }
 
 }  // namespace refract

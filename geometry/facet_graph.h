@@ -80,6 +80,19 @@ public:
     LocalLanes intersect_lanes(const ConvexPolyhedron& c, const LaneVec3& origin, const LaneVec3& dir,
                                const LaneMask& active, double t_min, const Lanes& t_max, int from,
                                const std::array<std::int32_t, kLanes>& guess) const;
+    // Its body, compiled once per instruction set A (geometry/simd/facet_graph.cpp), so that
+    // the lane loops are as wide as the CPU's registers.
+    template <class A>
+    LocalLanes intersect_lanes_on(const ConvexPolyhedron& c, const LaneVec3& origin, const LaneVec3& dir,
+                                  const LaneMask& active, double t_min, const Lanes& t_max, int from,
+                                  const std::array<std::int32_t, kLanes>& guess) const;
+    // The same as a plain function (a pointer to it is one word).
+    template <class A>
+    static LocalLanes intersect_lanes_of(const FacetGraph& g, const ConvexPolyhedron& c, const LaneVec3& origin,
+                                         const LaneVec3& dir, const LaneMask& active, double t_min, const Lanes& t_max,
+                                         int from, const std::array<std::int32_t, kLanes>& guess) {
+        return g.intersect_lanes_on<A>(c, origin, dir, active, t_min, t_max, from, guess);
+    }
 
 private:
     std::vector<std::vector<std::int32_t>> neighbours_;

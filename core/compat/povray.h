@@ -111,7 +111,7 @@ NodeBranches<V> dielectric_branches(const material::Dielectric& m, const NodeAt<
     b.reflectance = select(mirror, S(1.0), R);
     b.factor[1] = cwise(V{filter[0], filter[1], filter[2]}, fade_factor);
     b.bailout[1] = adc_weight;
-    b.dir[1] = choose(tir, [&] { return b.dir[0]; }, [&] {
+    b.dir[1] = choose(M(tir || !at.on), [&] { return b.dir[0]; }, [&] {
         return V(gen::refracted_direction(at.dir, at.normal, cos_i, gen::cos_of_sin2(sin2_t), at.eta).normalized());
     });
     return b;

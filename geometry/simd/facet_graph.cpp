@@ -3,6 +3,7 @@
 // instruction set (geometry/simd.h). Each plane's arithmetic is the slab loop's
 // ((n_x v_x + n_y v_y) + n_z v_z, d − n·o, their quotient) without contraction into FMA, so
 // equal inputs give equal bits.
+#include <refract/geometry/facet_graph.h>
 #include <refract/geometry/lanes.h>
 #include <refract/geometry/simd.h>
 #include <refract/geometry/simd/batch.h>
@@ -70,6 +71,104 @@ std::uint32_t contradicts_lanes(const double* nx, const double* ny, const double
     }
     return bad_bits;
 }
+
+}  // namespace refract::simd
+
+namespace refract {
+
+// FacetGraph::intersect_lanes on this instruction set: its lane loops as wide as A's
+// registers, the planes' test above inline; every call inside inlined (flatten), so that
+// nothing compiled here is called from elsewhere.
+template <class A>
+[[gnu::flatten]] FacetGraph::LocalLanes FacetGraph::intersect_lanes_on(const ConvexPolyhedron& c, const LaneVec3& o,
+                                                                     const LaneVec3& v, const LaneMask& active,
+                                                                     double t_min, const Lanes& t_max, int from,
+                                                                     const std::array<std::int32_t, kLanes>& guess) const {
+    LocalLanes out;
+    out.decided = out.hit = LaneMask::Constant(false);
+    out.facet.fill(-1);
+    if (!usable(from) || !(t_min >= 0)) return out;
+    // intersect()'s steps on every lane: the bounding sphere (misses_bound) ...
+    LaneMask live = active;
+    if (c.bound_radius > 0) {
+        const LaneVec3 oc = o - LaneVec3::broadcast(c.bound_center);
+        const Lanes b = oc.dot(v);
+        const Lanes q = oc.squaredNorm() - Lanes(c.bound_radius * c.bound_radius);
+        const LaneMask miss = (q > Lanes(0.0)) && ((b > Lanes(0.0)) || (q > b * b));
+        out.decided = active && miss;
+        live = active && !miss;
+    }
+    // ... the starting facet's own plane: outward rays are decided by it ...
+    const Plane& ps = c.planes[static_cast<size_t>(from)];
+    const LaneVec3 ns = LaneVec3::broadcast(ps.normal);
+    const Lanes denom_s = ns.dot(v);
+    const Lanes dist_s = Lanes(ps.offset) - ns.dot(o);
+    const LaneMask outward = live && (denom_s > Lanes(0.0));
+    out.decided = out.decided || (outward && (Lanes(t_min) >= dist_s / denom_s));
+    // ... inward ones by their guess's t, unless a plane around `from` or the guess
+    // contradicts it.
+    const double near = 0.25 * tolerance_;
+    alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes], gd[kLanes], gi[kLanes];
+    LaneMask cand = live && (denom_s < Lanes(0.0));
+    for (int l = 0; l < kLanes; ++l) {
+        const int g = guess[static_cast<size_t>(l)];
+        cand[l] = cand[l] && std::abs(dist_s[l]) <= near && usable(g);
+        const Plane& pg = c.planes[static_cast<size_t>(cand[l] ? g : from)];
+        gx[l] = pg.normal.x();
+        gy[l] = pg.normal.y();
+        gz[l] = pg.normal.z();
+        gd[l] = pg.offset;
+        gi[l] = static_cast<double>(cand[l] ? g : from);
+    }
+    if (!cand.any()) return out;
+    LaneVec3 ng;
+    for (int l = 0; l < kLanes; ++l) {
+        ng.x[l] = gx[l];
+        ng.y[l] = gy[l];
+        ng.z[l] = gz[l];
+    }
+    Lanes dg;
+    for (int l = 0; l < kLanes; ++l) dg[l] = gd[l];
+    const Lanes denom_g = ng.dot(v);
+    const Lanes t_g = (dg - ng.dot(o)) / denom_g;
+    cand = cand && (denom_g > Lanes(0.0)) && (t_g > Lanes(t_min));
+    if (!cand.any()) return out;
+    // The lanes of m against the first n planes of f's block (vectorised over the lanes: no
+    // padding): those it contradicts.
+    const auto contradicted = [&](int f, size_t n, std::uint32_t m) {
+        const Block& b = blocks_[static_cast<size_t>(f)];
+        return simd::contradicts_lanes<A>(b.nx.data(), b.ny.data(), b.nz.data(), b.d.data(), b.index.data(), n, o.x.v,
+                                      o.y.v, o.z.v, v.x.v, v.y.v, v.z.v, t_min, t_g.v, gi, m);
+    };
+    std::uint32_t bad = contradicted(from, blocks_[static_cast<size_t>(from)].neighbours + 1, cand.bits);
+    // Each guess's block, for the lanes that took it: its neighbours (g's own plane gives
+    // t_g itself, the same arithmetic, which never contradicts it).
+    for (std::uint32_t left = cand.bits; left != 0;) {
+        const int g = guess[static_cast<size_t>(__builtin_ctz(left))];
+        std::uint32_t same = 0;
+        for (int k = 0; k < kLanes; ++k) same |= ((left >> k) & 1u) && guess[static_cast<size_t>(k)] == g ? 1u << k : 0u;
+        left &= ~same;
+        bad |= contradicted(g, blocks_[static_cast<size_t>(g)].neighbours, same);
+    }
+    LaneMask ok;
+    ok.bits = cand.bits & ~bad;
+    out.decided = out.decided || ok;
+    out.hit = ok && (t_g < t_max);
+    for (int l = 0; l < kLanes; ++l)
+        if (ok[l]) out.facet[static_cast<size_t>(l)] = guess[static_cast<size_t>(l)];
+    out.t = t_g;
+    out.point = o + t_g * v;
+    return out;
+}
+
+
+template FacetGraph::LocalLanes FacetGraph::intersect_lanes_on<REFRACT_SIMD_ARCH>(
+    const ConvexPolyhedron&, const LaneVec3&, const LaneVec3&, const LaneMask&, double, const Lanes&, int,
+    const std::array<std::int32_t, kLanes>&) const;
+
+}  // namespace refract
+
+namespace refract::simd {
 
 template bool contradicts<REFRACT_SIMD_ARCH>(const double*, const double*, const double*, const double*,
                                              const double*, std::size_t, const double*, const double*, double, double,
