@@ -43,17 +43,16 @@ sanitize() {
     ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -L sanitize
 }
 
-# The fuzzing build (build-fuzz/, clang): the libFuzzer target, with geometry/ and core/
-# instrumented for it and built with AddressSanitizer and UndefinedBehaviorSanitizer. Clang
-# and its runtime libraries are installed only here.
-# The libFuzzer target (clang, ASan, UBSan): `fuzz_build DIR TYPE` builds it in DIR with
-# CMAKE_BUILD_TYPE TYPE. The test path builds it unoptimised in build-fuzz-check/ (that it
-# still compiles and links with clang, quickly); `fuzz` builds and runs it optimised.
+# The libFuzzer target (clang; geometry/ and core/ instrumented for it and built with
+# AddressSanitizer and UndefinedBehaviorSanitizer): `fuzz_build DIR TYPE` builds it in DIR
+# with CMAKE_BUILD_TYPE TYPE. The test path builds it unoptimised and without debug
+# information in build-fuzz-check/ (that it still compiles and links with clang, quickly);
+# `fuzz` builds and runs it optimised. Clang and its runtime libraries are installed only here.
 fuzz_build() {
     PACKAGES+=(clang libclang-rt-14-dev)
     install_missing
     CXX=clang++ cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE="$2" -DREFRACT_FUZZ=ON \
-        -DREFRACT_BUILD_TESTS=OFF >/dev/null
+        -DREFRACT_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
     cmake --build "$1" -j "$(nproc)" --target scene_fuzzer
 }
 

@@ -215,6 +215,13 @@ Vec3 bin_direction(const FarFieldSettings& s, int b) {
 }
 
 int FarFieldResult::bin_of(const Vec3& dir) const { return Geometry(settings).bin_of(dir.normalized()); }
+std::vector<int> FarFieldResult::bins_of(const std::vector<Vec3>& dirs) const {
+    const Geometry g(settings);
+    std::vector<int> out;
+    out.reserve(dirs.size());
+    for (const Vec3& d : dirs) out.push_back(g.bin_of(d.normalized()));
+    return out;
+}
 
 std::string FarFieldResult::class_name(int c) const {
     if (c == 0) return "reflected";

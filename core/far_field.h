@@ -78,6 +78,8 @@ struct FarFieldResult {
     double phi_deg(int b) const;
     // The bin a direction falls in.
     int bin_of(const Vec3& dir) const;
+    // The same for many directions (the binning built once).
+    std::vector<int> bins_of(const std::vector<Vec3>& dirs) const;
     std::string class_name(int c) const;
 };
 
