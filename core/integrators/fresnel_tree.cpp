@@ -56,26 +56,12 @@ class FresnelTree : public Integrator {
 public:
     using Integrator::Integrator;
     Vec3 pixel(int i, int j, RenderStats& stats, std::vector<double>*) const override {
-        const int n = tracer_.settings().samples;
-        Vec3 sum(0, 0, 0);
-        for (int k = 0; k < n; ++k) {
-            Rng rng;
-            const Ray ray = sample_ray(i, j, k, rng);
-            ++stats.primary_rays;
-            sum += fresnel_tree_radiance(tracer_, ray, stats);
-        }
-        return Vec3(sum / n);
+        return sample_mean<Vec3>(i, j, stats, [&](const Ray& ray) { return fresnel_tree_radiance(tracer_, ray, stats); });
     }
     StokesRGB pixel_stokes(int i, int j, RenderStats& stats, LinearPolarisation& lp) const override {
-        const int n = tracer_.settings().samples;
-        StokesRGB sum = StokesRGB::Zero();
-        for (int k = 0; k < n; ++k) {
-            Rng rng;
-            const Ray ray = sample_ray(i, j, k, rng);
-            ++stats.primary_rays;
-            sum += fresnel_tree_stokes(tracer_, ray, camera_stokes(tracer_.scene(), ray), stats);
-        }
-        sum /= n;
+        const StokesRGB sum = sample_mean<StokesRGB>(i, j, stats, [&](const Ray& ray) {
+            return fresnel_tree_stokes(tracer_, ray, camera_stokes(tracer_.scene(), ray), stats);
+        });
         lp = linear_polarisation(sum, tracer_.scene(), tracer_.camera_ray(i + 0.5, j + 0.5));
         return sum;
     }

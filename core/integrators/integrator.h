@@ -37,6 +37,20 @@ protected:
     // The primary ray of sample k of pixel (i, j): through its centre, or jittered with the
     // sample's own random stream `rng` (which a stochastic integrator then continues).
     Ray sample_ray(int i, int j, int k, Rng& rng) const;
+    // The mean over pixel (i, j)'s samples of `light(ray)` (T: Vec3 or StokesRGB), each
+    // sample's primary ray counted, the sum in sample order divided by their number.
+    template <class T, class Light>
+    T sample_mean(int i, int j, RenderStats& stats, Light&& light) const {
+        const int n = tracer_.settings().samples;
+        T sum = T::Zero();
+        for (int k = 0; k < n; ++k) {
+            Rng rng;
+            const Ray ray = sample_ray(i, j, k, rng);
+            ++stats.primary_rays;
+            sum += light(ray);
+        }
+        return T(sum / n);
+    }
     const SceneTracer& tracer_;
 };
 

@@ -84,15 +84,7 @@ class Whitted : public Integrator {
 public:
     using Integrator::Integrator;
     Vec3 pixel(int i, int j, RenderStats& stats, std::vector<double>*) const override {
-        const int n = tracer_.settings().samples;
-        Vec3 sum(0, 0, 0);
-        for (int k = 0; k < n; ++k) {
-            Rng rng;
-            const Ray ray = sample_ray(i, j, k, rng);
-            ++stats.primary_rays;
-            sum += whitted_radiance(tracer_, ray, stats);
-        }
-        return Vec3(sum / n);
+        return sample_mean<Vec3>(i, j, stats, [&](const Ray& ray) { return whitted_radiance(tracer_, ray, stats); });
     }
 };
 
