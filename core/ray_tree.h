@@ -37,6 +37,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <cstring>
 #include <initializer_list>
 #include <type_traits>
 #include <utility>
@@ -566,11 +567,18 @@ private:
         const double nominal = rules.nominal_index(d.ior);
         // Each lane's index at its band (the ends' band_ior, a function of the band and the
         // material), kept for the next node in the same material with the same bands.
-        std::array<std::int16_t, kLanes> bands;
-        for (int l = 0; l < kLanes; ++l) bands[static_cast<size_t>(l)] = m[l] ? p.band[static_cast<size_t>(l)] : -2;
-        if (&mat != ior_material_ || bands != ior_bands_) {
+        // (The key compared as words read from the packet: no store of eight bands to reload.)
+        static_assert(sizeof(p.band) == 2 * sizeof(std::uint64_t), "eight 16-bit bands");
+        std::uint64_t bands[2];
+        std::memcpy(bands, p.band.data(), sizeof bands);
+        for (int k = 0; k < 2; ++k) {  // lanes not in m: band −2 (0xfffe)
+            const std::uint64_t in_m = kLaneWords[(m.bits >> (4 * k)) & 0xfu];
+            bands[k] = (bands[k] & in_m) | (0xfffefffefffefffeull & ~in_m);
+        }
+        if (&mat != ior_material_ || bands[0] != ior_bands_[0] || bands[1] != ior_bands_[1]) {
             ior_material_ = &mat;
-            ior_bands_ = bands;
+            ior_bands_[0] = bands[0];
+            ior_bands_[1] = bands[1];
             ior_ = Lanes(nominal);
             const SurfaceHit h0 = tracer_.surface_hit(h, m.first());
             for_each_lane(m, [&](int l) {
@@ -744,7 +752,13 @@ private:
     LaneLosses* packet_lost_ = &lost_;
     // Packets: the indices of the last packet's bands in the last material met.
     const Material* ior_material_ = nullptr;
-    std::array<std::int16_t, kLanes> ior_bands_{};
+    std::uint64_t ior_bands_[2] = {0, 0};
+    // Four lanes' bits as four 16-bit masks (lane j of the four: bits 16j to 16j + 15).
+    static constexpr std::uint64_t kLaneWords[16] = {
+        0x0000000000000000ull, 0x000000000000ffffull, 0x00000000ffff0000ull, 0x00000000ffffffffull,
+        0x0000ffff00000000ull, 0x0000ffff0000ffffull, 0x0000ffffffff0000ull, 0x0000ffffffffffffull,
+        0xffff000000000000ull, 0xffff00000000ffffull, 0xffff0000ffff0000ull, 0xffff0000ffffffffull,
+        0xffffffff00000000ull, 0xffffffff0000ffffull, 0xffffffffffff0000ull, 0xffffffffffffffffull};
     Lanes ior_{0.0}, inverse_ior_{0.0};
 };
 using RayTreeWalker = RayTreeWalkerT<NaturalLight>;
