@@ -697,8 +697,17 @@ private:
             c.reflections[i] = static_cast<std::int16_t>(p.reflections[i] + dr);
             c.transmissions[i] = static_cast<std::int16_t>(p.transmissions[i] + dt);
         }
+        // The lanes cut() may drop, found over the packet (the threshold, then the depth and
+        // the limits); each of them then through cut() itself, in lane order.
+        LaneMask maybe = bailout < Lanes(limits_.threshold);
+        if (!limits_.keep_zero) maybe = maybe || (Lanes(0.0) >= bailout);
+        if (p.depth + 1 > limits_.max_depth) maybe = LaneMask::Constant(true);
+        if (limits_.max_reflections < TreeLimits::kUnlimited || limits_.max_transmissions < TreeLimits::kUnlimited)
+            for (int l = 0; l < kLanes; ++l)
+                maybe[l] = maybe[l] || c.reflections[static_cast<size_t>(l)] > limits_.max_reflections ||
+                           c.transmissions[static_cast<size_t>(l)] > limits_.max_transmissions;
         LaneMask keep = m;
-        for_each_lane(m, [&](int l) {
+        for_each_lane(m && maybe, [&](int l) {
             const size_t i = static_cast<size_t>(l);
             const Cut why = cut(p.depth, c.reflections[i], c.transmissions[i], bailout[l]);
             if (why == Cut::Kept) return;
