@@ -242,8 +242,8 @@ std::optional<HitSearch::Blocker> HitSearch::shadow_blocker(const Ray& ray, doub
 }
 
 // The state of one packet's in-order search (intersect_lanes): each lane's best hit so far
-// and the object it is on.
-// The search writes into the caller's result; nothing is zeroed that is set before use.
+// and the object it is on, written straight into the caller's result; nothing that is set
+// before use is zeroed.
 struct HitSearch::LaneSearch {
     LaneSearch(const LaneVec3& origin_, const LaneVec3& dir_, const LaneMask& active_, const LaneOrigins& from_,
                RenderStats& stats_, double t_min_, const SphereGroup* group_, LaneHits& out_, double t_max)
