@@ -23,7 +23,8 @@ Registrar::Registrar(int order, std::function<void(CLI::App&)> add) {
 bool stderr_is_terminal() { return isatty(STDERR_FILENO) != 0; }
 
 // An error message as one line of printable text: control characters (a field name's
-// newline or terminal escape echoed from a scene) are written as \xNN.
+// newline or terminal escape echoed from a scene) are written as \xNN, and a line past
+// 8 KiB (input echoed whole somewhere) keeps its first 6 KiB and last 1 KiB.
 std::string printable(const std::string& text) {
     std::string out;
     for (const unsigned char c : text) {
@@ -35,7 +36,14 @@ std::string printable(const std::string& text) {
             out += static_cast<char>(c);
         }
     }
-    return out;
+    constexpr size_t kMax = 8192, kHead = 6144, kTail = 1024;
+    if (out.size() <= kMax) return out;
+    const auto inside = [&](size_t k) { return (static_cast<unsigned char>(out[k]) & 0xC0) == 0x80; };
+    size_t head = kHead, tail = out.size() - kTail;
+    while (head > 0 && inside(head)) --head;
+    while (tail < out.size() && inside(tail)) ++tail;
+    return out.substr(0, head) + "\u2026(" + std::to_string(tail - head) + " bytes left out)\u2026" +
+           out.substr(tail);
 }
 
 }  // namespace refract::cli

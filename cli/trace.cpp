@@ -83,7 +83,7 @@ refract::cli::Registrar reg{15, [](CLI::App& app) {
                 try {
                     j = nlohmann::json::parse(a->polarisation);
                 } catch (const nlohmann::json::exception&) {
-                    throw InputError("trace: --polarisation: not a JSON object: " + a->polarisation);
+                    throw InputError("trace: --polarisation: not a JSON object: " + clip_echo(a->polarisation));
                 }
             } else {
                 j = {{"type", a->polarisation}};

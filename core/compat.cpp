@@ -164,7 +164,7 @@ void CompatRules::validate(const Scene& scene) const {
         throw InputError(f + ": /render/polarisation: \"exact\" has no POV-Ray counterpart (compat \"povray\" is natural light)");
     for (const Material& m : scene.materials)
         if (m.is<material::Uniaxial>())
-            throw InputError(f + ": material '" + m.name +
+            throw InputError(f + ": material '" + clip_echo(m.name) +
                              "': a uniaxial crystal needs the physical mode and the fresnel-tree integrator (or the "
                              "spectral eye pass): its rays carry their o/e wave along the ray tree");
 }

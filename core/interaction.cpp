@@ -59,7 +59,7 @@ Material::Kind read_kind(const std::variant<K...>*, const JsonReader& r, const s
     if (!kind) {
         std::string names;
         ((names += (names.empty() ? "" : ", ") + std::string(K::kType)), ...);
-        r.fail_at("type", "unknown material type '" + type + "' (" + names + ")");
+        r.fail_at("type", "unknown material type '" + clip_echo(type) + "' (" + names + ")");
     }
     return *kind;
 }

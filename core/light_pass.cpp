@@ -168,7 +168,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
                 map_surface(o.shape));
         } catch (const InputError& e) {
             throw InputError((scene.source.empty() ? std::string("scene") : scene.source) + ": " + e.what() +
-                             " (object '" + o.name + "')");
+                             " (object '" + clip_echo(o.name) + "')");
         }
     }
     Accumulator acc;

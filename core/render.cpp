@@ -38,7 +38,7 @@ void validate(const Scene& scene) {
     CompatRules(s).validate(scene);
     validate_integrator(scene);
     for (const Material& m : scene.materials)
-        validate(m, MaterialCheck{f + ": material '" + m.name + "'", s.polarisation == PolarisationModel::Exact,
+        validate(m, MaterialCheck{f + ": material '" + clip_echo(m.name) + "'", s.polarisation == PolarisationModel::Exact,
                                   s.integrator == IntegratorKind::FresnelTree});
 }
 

@@ -28,7 +28,7 @@ Camera parse_camera(const JsonReader& r) {
     const std::string type = r.string("type", "perspective");
     if (type == "perspective") c.type = Camera::Type::Perspective;
     else if (type == "orthographic") c.type = Camera::Type::Orthographic;
-    else r.fail_at("type", "unknown camera type '" + type + "' (perspective, orthographic)");
+    else r.fail_at("type", "unknown camera type '" + clip_echo(type) + "' (perspective, orthographic)");
     c.location = r.vec3("location", c.location);
     c.look_at = r.vec3("look_at", c.look_at);
     c.sky = r.vec3("sky", c.sky);
@@ -111,7 +111,7 @@ Background parse_background(const json& v, const std::string& file) {
         b.top = r.vec3("top", b.top);
         b.bottom = r.vec3("bottom", b.bottom);
     } else {
-        r.fail_at("type", "unknown background type '" + type + "' (solid, gradient, environment)");
+        r.fail_at("type", "unknown background type '" + clip_echo(type) + "' (solid, gradient, environment)");
     }
     return b;
 }
@@ -128,7 +128,7 @@ int material_ref(const JsonReader& o, std::vector<Material>& materials, const st
     const auto& v = o.raw("material");
     if (v.is_string()) {
         const auto it = by_name.find(v.get<std::string>());
-        if (it == by_name.end()) o.fail_at("material", "unknown material '" + v.get<std::string>() + "'");
+        if (it == by_name.end()) o.fail_at("material", "unknown material '" + clip_echo(v.get<std::string>()) + "'");
         return it->second;
     }
     if (!v.is_object()) o.fail_at("material", "must be a material name or a material object");
@@ -237,7 +237,7 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
         return c;
     }
     if (type == "brilliant") return parse_brilliant(o);
-    o.fail_at("type", "unknown object type '" + type + "' (sphere, plane, mesh, polyhedron, brilliant)");
+    o.fail_at("type", "unknown object type '" + clip_echo(type) + "' (sphere, plane, mesh, polyhedron, brilliant)");
 }
 
 SpectralSettings parse_spectral(const JsonReader& r, const std::string& file) {
@@ -300,7 +300,7 @@ LightPassSettings parse_light_pass(const JsonReader& r) {
     const std::string filter = r.string("filter", "bilinear");
     if (filter == "box") s.filter = MapFilter::Box;
     else if (filter == "bilinear") s.filter = MapFilter::Bilinear;
-    else r.fail_at("filter", "unknown filter '" + filter + "' (box, bilinear)");
+    else r.fail_at("filter", "unknown filter '" + clip_echo(filter) + "' (box, bilinear)");
     return s;
 }
 
@@ -314,7 +314,7 @@ PolarisationState parse_polarisation_state(const JsonReader& r, bool reference) 
     if (type == "unpolarised") p.kind = PolarisationState::Kind::Unpolarised;
     else if (type == "linear") p.kind = PolarisationState::Kind::Linear;
     else if (type == "circular") p.kind = PolarisationState::Kind::Circular;
-    else r.fail_at("type", "unknown polarisation '" + type + "' (unpolarised, linear, circular)");
+    else r.fail_at("type", "unknown polarisation '" + clip_echo(type) + "' (unpolarised, linear, circular)");
     if (p.kind != PolarisationState::Kind::Linear && r.has("angle")) r.fail_at("angle", "only for linear polarisation");
     if (p.kind != PolarisationState::Kind::Circular && r.has("handedness"))
         r.fail_at("handedness", "only for circular polarisation");
@@ -344,7 +344,7 @@ void parse_polarisation(const JsonReader& r, RenderSettings& s) {
     }
     if (model == "natural") s.polarisation = PolarisationModel::Natural;
     else if (model == "exact") s.polarisation = PolarisationModel::Exact;
-    else r.fail_at("polarisation", "unknown model '" + model + "' (natural, exact)");
+    else r.fail_at("polarisation", "unknown model '" + clip_echo(model) + "' (natural, exact)");
     if (s.analyser && s.polarisation != PolarisationModel::Exact)
         r.fail_at("polarisation", "an analyser needs the \"exact\" model");
 }
@@ -359,7 +359,7 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
     } else {
         std::string names;
         for (const std::string& n : integrator_names()) names += (names.empty() ? "" : ", ") + n;
-        r.fail_at("integrator", "unknown integrator '" + integ + "' (" + names + ")");
+        r.fail_at("integrator", "unknown integrator '" + clip_echo(integ) + "' (" + names + ")");
     }
     s.max_depth = r.integer("max_depth", s.max_depth, 0, 10000);
     s.threshold = r.number("threshold", s.threshold);
@@ -375,7 +375,7 @@ RenderSettings parse_settings(const JsonReader& r, const std::string& file) {
     if (const auto c = CompatRules::from_name(compat)) {
         s.compat = *c;
     } else {
-        r.fail_at("compat", "unknown mode '" + compat + "' (" + CompatRules::name(Compat::Physical) + ", " +
+        r.fail_at("compat", "unknown mode '" + clip_echo(compat) + "' (" + CompatRules::name(Compat::Physical) + ", " +
                                 CompatRules::name(Compat::PovRay) + ")");
     }
     // `"spectral": false`: RGB rays only, even with dispersive or uniaxial materials (their
@@ -419,6 +419,7 @@ Scene parse_scene(const json& j, const std::string& file) {
     JsonReader root(j, file, "");
     if (!j.is_object()) root.fail("a scene must be a JSON object");
     root.only({"camera", "background", "materials", "objects", "lights", "render", "description"});
+    if (root.has("description")) (void)root.string("description");  // free text, but text
     Scene s;
     s.source = file;
     s.camera = parse_camera(root.child("camera"));
@@ -475,7 +476,7 @@ Scene parse_scene(const json& j, const std::string& file) {
                 if (!(light.radius > 0 && light.radius <= 1e15)) l.fail_at("radius", "must be in (0, 1e15]");
                 if (!(light.position.norm() < 1e150)) l.fail_at("position", "must lie within 1e150 of the origin");
             } else {
-                l.fail_at("type", "unknown light type '" + type + "' (point, directional, beam)");
+                l.fail_at("type", "unknown light type '" + clip_echo(type) + "' (point, directional, beam)");
             }
             light.color = l.vec3("color", Vec3(1, 1, 1));
             // Colours scale every sum of the render: negative or astronomically large ones

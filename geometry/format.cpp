@@ -21,4 +21,11 @@ std::string format_significant(double v, int significant) {
     return buf;
 }
 
+std::string clip_echo(const std::string& text, std::size_t keep) {
+    if (text.size() <= keep) return text;
+    std::size_t n = keep;
+    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;  // not inside a character
+    return text.substr(0, n) + "\u2026(" + std::to_string(text.size()) + " bytes)";
+}
+
 }  // namespace refract

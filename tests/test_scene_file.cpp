@@ -34,6 +34,9 @@ std::string error_of(const std::string& text) {
     return "";
 }
 
+// Where the material's name "glass" (quotes included) starts in kGood.
+size_t glass_at() { return std::string(kGood).find("\"glass\": {"); }
+
 std::string with(const std::string& from, const std::string& to) {
     std::string s = kGood;
     const auto pos = s.find(from);
@@ -67,6 +70,30 @@ TEST_CASE("Bad scene input names the file and the JSON path", "[scene][errors]")
                Contains("/objects/0/center/1: must be a number"));
     CHECK_THAT(error_of(with("\"type\": \"sphere\"", "\"type\": \"torus\"")),
                Contains("/objects/0/type: unknown object type 'torus'"));
+}
+
+TEST_CASE("Scene text echoed in a message is clipped to 64 bytes and its length: keys, names, values, and the "
+          "description is a string",
+          "[scene][errors][limits]") {
+    const std::string big(1 << 20, 'k');
+    const std::string clipped = std::string(64, 'k') + "\u2026(1048576 bytes)";
+    std::string e = error_of(with("\"radius\": 1", "\"" + big + "\": 1"));
+    CHECK_THAT(e, Contains("s.json: /objects/0/" + clipped + ": unknown field (expected one of:"));
+    CHECK(e.size() < 300);
+    e = error_of(with("\"type\": \"sphere\"", "\"type\": \"" + big + "\""));
+    CHECK_THAT(e, Contains("/objects/0/type: unknown object type '" + clipped + "' (sphere,"));
+    CHECK(e.size() < 300);
+    // A material's name in its fields' paths.
+    e = error_of(with("\"ior\": 1.5", "\"ior\": 1.5, \"x\": 1").replace(glass_at(), 7, "\"" + big + "\""));
+    CHECK_THAT(e, Contains("s.json: /materials/" + clipped + "/x: unknown field"));
+    CHECK(e.size() < 300);
+    // Whole characters: a 2-byte character across the 64th byte is left out, not cut.
+    CHECK(clip_echo(std::string(63, 'a') + "\u00e9" + "b") == std::string(63, 'a') + "\u2026(66 bytes)");
+    CHECK(clip_echo(std::string(64, 'a')) == std::string(64, 'a'));
+    for (const char* d : {"5", "[\"a\"]", "{}", "null", "true"})
+        CHECK_THAT(error_of(with("{\n", std::string("{\"description\": ") + d + ",\n")),
+                   Contains("s.json: /description: must be a string"));
+    CHECK(error_of(with("{\n", "{\"description\": \"a sphere\",\n")).empty());
 }
 
 TEST_CASE("Missing and malformed scene files are refused with the file name", "[scene][errors]") {

@@ -79,7 +79,7 @@ Vec3 parse_vec3(const Channels& map, const std::string& name, const std::string&
     if (!v) throw InputError(name + ": not a far-field sphere map (no " + key + " in its header)");
     std::istringstream in(*v);
     double x, y, z;
-    if (!(in >> x >> y >> z)) throw InputError(name + ": " + key + " '" + *v + "' is not three numbers");
+    if (!(in >> x >> y >> z)) throw InputError(name + ": " + key + " '" + clip_echo(*v) + "' is not three numbers");
     return {x, y, z};
 }
 

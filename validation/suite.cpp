@@ -93,7 +93,7 @@ Tolerances load_tolerances(const std::string& path) {
         a.only({"kind", "tolerance", "profile"});
         Analytic an;
         an.kind = a.string("kind");
-        if (an.kind != "fresnel-sphere") a.fail_at("kind", "unknown analytic reference '" + an.kind + "' (fresnel-sphere)");
+        if (an.kind != "fresnel-sphere") a.fail_at("kind", "unknown analytic reference '" + clip_echo(an.kind) + "' (fresnel-sphere)");
         an.tolerance = a.positive("tolerance", an.tolerance);
         if (a.has("profile")) {
             const JsonReader p = a.child("profile");

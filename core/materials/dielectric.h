@@ -92,7 +92,7 @@ inline Dielectric Dielectric::read(const JsonReader& r, const std::string& file)
         {"schlick", ReflectanceModel::Schlick}};
     const auto it = models.find(model);
     if (it == models.end())
-        r.fail_at("reflectance", "unknown model '" + model + "' (constant, fresnel, fresnel-s, fresnel-p, schlick)");
+        r.fail_at("reflectance", "unknown model '" + clip_echo(model) + "' (constant, fresnel, fresnel-s, fresnel-p, schlick)");
     m.reflectance = it->second;
     if (m.reflectance == ReflectanceModel::Constant) {
         m.constant_reflectivity = r.number("reflectivity");

@@ -77,7 +77,7 @@ inline Uniaxial Uniaxial::read(const JsonReader& r, const std::string& file) {
         if (!c) {
             std::string known;
             for (const auto& n : spectrum::uniaxial_crystal_names()) known += (known.empty() ? "" : ", ") + n;
-            r.fail_at("crystal", "unknown crystal '" + m.crystal + "' (" + known + ")");
+            r.fail_at("crystal", "unknown crystal '" + clip_echo(m.crystal) + "' (" + known + ")");
         }
         m.ordinary = c->ordinary;
         m.extraordinary = c->extraordinary;

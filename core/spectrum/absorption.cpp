@@ -82,7 +82,7 @@ Absorption absorption_catalogue(const std::string& name, double unit_cm) {
                           "green glass (model: Fe3+ at 380 nm, Fe2+ at 1050 nm)", unit_cm);
     std::string names;
     for (const auto& n : absorption_catalogue_names()) names += (names.empty() ? "" : ", ") + n;
-    throw InputError("unknown absorbing material '" + name + "' (" + names + ")");
+    throw InputError("unknown absorbing material '" + clip_echo(name) + "' (" + names + ")");
 }
 
 std::vector<std::string> absorption_catalogue_names() { return {"ruby", "blue-sapphire", "emerald", "green-glass"}; }
@@ -91,7 +91,7 @@ namespace {
 
 double finite_nonneg(const nlohmann::json& v, const std::string& where) {
     if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
-        throw InputError(where + ": must be a finite number >= 0, got " + v.dump());
+        throw InputError(where + ": must be a finite number >= 0, got " + clip_echo(v.dump()));
     return v.get<double>();
 }
 
@@ -110,12 +110,12 @@ Absorption parse_absorption(const nlohmann::json& j, const std::string& path) {
             throw InputError(path + ": " + e.what());
         }
     }
-    if (!j.is_object()) throw InputError(path + ": expected a material name or an object, got " + j.dump());
+    if (!j.is_object()) throw InputError(path + ": expected a material name or an object, got " + clip_echo(j.dump()));
     auto only = [&](std::initializer_list<const char*> keys) {
         for (const auto& [k, v] : j.items()) {
             bool ok = false;
             for (const char* a : keys) ok = ok || k == a;
-            if (!ok) throw InputError(path + "/" + k + ": unknown field");
+            if (!ok) throw InputError(path + "/" + clip_echo(k) + ": unknown field");
         }
     };
     if (j.contains("model")) {

@@ -193,7 +193,7 @@ std::string to_string(ColourPipeline p) {
 ColourPipeline parse_colour_pipeline(const std::string& s, const std::string& path) {
     if (s == "cie-rgb") return ColourPipeline::CieRgb;
     if (s == "xyz-srgb") return ColourPipeline::XyzSrgb;
-    throw InputError(path + ": unknown colour pipeline \"" + s +
+    throw InputError(path + ": unknown colour pipeline \"" + clip_echo(s) +
                      "\"; allowed: \"cie-rgb\", \"xyz-srgb\"");
 }
 

@@ -302,7 +302,7 @@ std::vector<std::string> catalogue_names() {
 const Dispersion& catalogue(const std::string& name) {
     const auto it = table().find(normalise_name(name));
     if (it == table().end())
-        throw InputError("material \"" + name + "\" is not in the catalogue; known: " +
+        throw InputError("material \"" + clip_echo(name) + "\" is not in the catalogue; known: " +
                          known_names());
     return it->second;
 }
@@ -316,7 +316,7 @@ double number(const nlohmann::json& o, const char* key, const std::string& path)
     if (!o.contains(key)) throw InputError(path + ": missing \"" + key + "\"");
     const auto& v = o.at(key);
     if (!v.is_number() || !std::isfinite(v.get<double>()))
-        throw InputError(path + "/" + key + ": expected a finite number, got " + v.dump());
+        throw InputError(path + "/" + key + ": expected a finite number, got " + clip_echo(v.dump()));
     return v.get<double>();
 }
 
@@ -328,7 +328,7 @@ std::vector<double> numbers(const nlohmann::json& o, const char* key, const std:
     if (!o.contains(key)) throw InputError(path + ": missing \"" + key + "\"");
     const auto& v = o.at(key);
     if (!v.is_array() || v.empty() || v.size() > 4)
-        throw InputError(path + "/" + key + ": expected an array of 1–4 numbers, got " + v.dump());
+        throw InputError(path + "/" + key + ": expected an array of 1–4 numbers, got " + clip_echo(v.dump()));
     std::vector<double> r;
     for (size_t i = 0; i < v.size(); ++i) {
         if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
@@ -345,7 +345,7 @@ void only_keys(const nlohmann::json& o, std::initializer_list<const char*> keys,
         if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return item.key() == k; })) {
             std::string allowed;
             for (const char* k : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(k);
-            throw InputError(path + "/" + item.key() + ": unknown key for this model; allowed: " +
+            throw InputError(path + "/" + clip_echo(item.key()) + ": unknown key for this model; allowed: " +
                              allowed);
         }
     }
@@ -404,7 +404,7 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
         m.samples = static_cast<int>(s);
         return {m, "povray ior " + format_value(m.ior) + " dispersion " + format_value(m.dispersion)};
     }
-    throw InputError(path + "/model: unknown model \"" + model + "\"; allowed: constant, cauchy, "
+    throw InputError(path + "/model: unknown model \"" + clip_echo(model) + "\"; allowed: constant, cauchy, "
                      "sellmeier, abbe, moissanite-form, povray");
 }
 
@@ -440,13 +440,13 @@ Dispersion parse_dispersion(const nlohmann::json& j, const std::string& path) {
     if (j.is_number()) {
         const double n = j.get<double>();
         if (!std::isfinite(n) || !(n > 0.0))
-            throw InputError(path + ": index " + j.dump() + " must be finite and > 0");
+            throw InputError(path + ": index " + clip_echo(j.dump()) + " must be finite and > 0");
         d = {ConstantIndex{n}, "constant n = " + format_value(n)};
     } else if (j.is_object()) {
         d = parse_model(j, path);
     } else {
         throw InputError(path + ": expected a material name, a number or a model object, got " +
-                         j.dump());
+                         clip_echo(j.dump()));
     }
     check_range(d, path);
     return d;

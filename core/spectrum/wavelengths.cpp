@@ -141,13 +141,13 @@ LightSpectrum parse_light_spectrum(const nlohmann::json& j, const std::string& p
         const std::string s = j.get<std::string>();
         if (s == "E" || s == "equal-energy") return LightSpectrum{};
         if (s == "D65" || s == "d65") return LightSpectrum{Illuminant::D65, 6504.0};
-        throw InputError(path + ": unknown light spectrum \"" + s +
+        throw InputError(path + ": unknown light spectrum \"" + clip_echo(s) +
                          "\"; known: \"equal-energy\" (or \"E\"), \"D65\", {\"blackbody\": kelvin}");
     }
     if (j.is_object() && j.size() == 1 && j.contains("blackbody")) {
         const auto& t = j.at("blackbody");
         if (!t.is_number())
-            throw InputError(path + "/blackbody: expected a temperature in kelvin, got " + t.dump());
+            throw InputError(path + "/blackbody: expected a temperature in kelvin, got " + clip_echo(t.dump()));
         return blackbody(t.get<double>(), path + "/blackbody");
     }
     throw InputError(path + ": expected \"equal-energy\", \"D65\" or {\"blackbody\": kelvin}, got " +
