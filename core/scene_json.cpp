@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -12,13 +11,13 @@
 #include <refract/core/json_reader.h>
 #include <refract/geometry/gem/brilliant.h>
 #include <refract/geometry/error.h>
+#include <refract/geometry/input_file.h>
 
 namespace refract {
 namespace {
 
 constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-format.md)
 constexpr double kMaxLightColour = 1e30;  // light colours, environment radiance and scale
-constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{64} << 20;  // a scene file
 
 using nlohmann::json;
 
@@ -502,16 +501,12 @@ Scene parse_scene(const json& j, const std::string& file) {
 }
 
 Scene load_scene(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
-    const auto size = std::filesystem::file_size(path, ec);
-    if (!ec && size > kMaxSceneBytes)
-        throw InputError(path + ": the scene file has " + std::to_string(size) + " bytes, more than the limit of 64 MiB");
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open scene file");
+    // At most 64 MiB, from a regular file, a pipe or a device alike (geometry/input_file.h).
+    const std::string text = read_input_file(path, "scene file");
+    check_json_depth(text, path);
     json j;
     try {
-        j = json::parse(in);
+        j = json::parse(text);
     } catch (const json::exception& e) {  // syntax errors, and numbers too large for a double
         // e.byte locates the error; the message says what was expected.
         std::string what = e.what();

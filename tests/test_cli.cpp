@@ -1,49 +1,22 @@
 // The `refract` command on bad input: one line on stderr, exit code 2, no output file.
 #include <catch2/catch.hpp>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "tests/cli_run.h"
 #include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-    int code;
-    std::string err;
-};
-
-// `env`: variable assignments put before the command (VAR=value ...).
-Run run(const std::string& args, const fs::path& dir, const std::string& env = "") {
-    const fs::path err = dir / "stderr.txt";
-    const std::string cmd = env + " " + REFRACT_EXE + " " + args + " 2>" + err.string() + " >/dev/null";
-    const int status = std::system(cmd.c_str());
-    std::ifstream f(err);
-    std::stringstream s;
-    s << f.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-}
+using refract::test::check_refused;
+using refract::test::count_lines;
+using refract::test::Run;
+using refract::test::run;
 
 fs::path fresh_dir(const std::string& name) { return refract::test::fresh_dir("cli", name); }
-
-int count_lines(const std::string& s) {
-    int n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
-
-// The error contract: exit 2 and one line on stderr naming `what`.
-void check_refused(const Run& r, const std::string& what) {
-    INFO(r.err);
-    CHECK(r.code == 2);
-    CHECK(count_lines(r.err) == 1);
-    CHECK(r.err.find(what) != std::string::npos);
-}
 
 }  // namespace
 

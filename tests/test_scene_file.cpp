@@ -204,7 +204,8 @@ TEST_CASE("A dispersive material's ior must agree with its dispersion model's no
                       Catch::Contains("/materials/w/ior"));
 }
 
-TEST_CASE("Resource limits of the scene reader and the light pass: file size, photons, illumination-map elements",
+TEST_CASE("Resource limits of the scene reader and the light pass: file size (a device's too), nesting, photons, "
+          "illumination-map elements",
           "[scene][limits]") {
     using nlohmann::json;
     namespace fs = std::filesystem;
@@ -215,6 +216,14 @@ TEST_CASE("Resource limits of the scene reader and the light pass: file size, ph
     fs::resize_file(dir / "huge.json", (std::uintmax_t{64} << 20) + 1);  // sparse: nothing is written
     CHECK_THROWS_WITH(load_scene((dir / "huge.json").string()), Catch::Contains("huge.json") && Catch::Contains("64 MiB"));
     CHECK_THROWS_WITH(load_scene(dir.string()), Catch::Contains("is a directory"));
+    // A device or a pipe has no size: read in chunks and refused once past 64 MiB.
+    CHECK_THROWS_WITH(load_scene("/dev/zero"),
+                      Catch::Contains("/dev/zero: the scene file is longer than the limit of 64 MiB"));
+    // Nesting costs the parser far more than its bytes: at most 64 levels.
+    { std::ofstream{dir / "deep.json"} << "{\"a\": \"[[[[\", \"b\":\n" << std::string(64, '[') << std::string(64, ']') << "}"; }
+    CHECK_THROWS_WITH(load_scene((dir / "deep.json").string()), Catch::Contains("deep.json: line 2: nested more than 64 levels deep"));
+    { std::ofstream{dir / "deep.json"} << "{\"a\": \"[[[[\", \"b\":\n" << std::string(63, '[') << std::string(63, ']') << "}"; }
+    CHECK_THROWS_WITH(load_scene((dir / "deep.json").string()), Catch::Contains("deep.json: /a: unknown field"));  // parsed
     fs::remove_all(dir);
     json s = {{"camera", {{"location", {0, 4, -4}}, {"look_at", {0, 0, 0}}, {"width", 8}, {"height", 6}}},
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.5}}}, {"floor", {{"type", "diffuse"}}}}},

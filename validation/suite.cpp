@@ -12,6 +12,7 @@
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/geometry/error.h>
+#include <refract/geometry/input_file.h>
 #include <refract/validation/analytic.h>
 #include <refract/validation/compare.h>
 #include <refract/validation/files.h>
@@ -66,14 +67,12 @@ int pixel_coord(const JsonReader& r, const std::string& key, int index) {
 
 Tolerances load_tolerances(const std::string& path) {
     nlohmann::json j;
-    {
-        std::ifstream in(path);
-        if (!in) throw InputError(path + ": cannot open tolerance file");
-        try {
-            j = nlohmann::json::parse(in);
-        } catch (const nlohmann::json::parse_error& e) {
-            throw InputError(path + ": malformed JSON: " + e.what());
-        }
+    const std::string text = read_input_file(path, "tolerance file");  // at most 64 MiB
+    check_json_depth(text, path);
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError(path + ": malformed JSON: " + e.what());
     }
     const JsonReader r(j, path, "");
     if (!j.is_object()) r.fail("a tolerance file must be a JSON object");

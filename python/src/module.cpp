@@ -18,6 +18,7 @@
 #include <refract/core/scene_json.h>
 #include <refract/core/trace_record.h>
 #include <refract/geometry/error.h>
+#include <refract/geometry/input_file.h>
 #include "python/src/bindings.h"
 
 namespace refract::python {
@@ -88,6 +89,7 @@ nlohmann::json to_json(const py::handle& o, const std::string& path, const std::
 using ScenePtr = std::shared_ptr<const Scene>;
 
 ScenePtr scene_from_text(const std::string& text, const std::string& source) {
+    check_json_depth(text, source);  // as the file reader
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);
