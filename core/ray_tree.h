@@ -39,6 +39,7 @@
 #include <deque>
 #include <cstring>
 #include <initializer_list>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -140,6 +141,8 @@ struct TreeLimits {
 // Throws InputError naming the scene and its max_depth and threshold: one ray tree grew
 // past TreeLimits::kMaxEntries waiting branches (`entries`) or kMaxSegments segments.
 [[noreturn]] void tree_too_large(const Scene& scene, bool entries);
+// The same for another bound: `what` says how the tree passed it ("took more than ...").
+[[noreturn]] void tree_too_large(const Scene& scene, const std::string& what);
 
 // The limits a scene's render settings set (no reflection/transmission limits).
 inline TreeLimits tree_limits(const RenderSettings& s) {

@@ -83,6 +83,9 @@ private:
     static Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
     TraceSegment& start(const Entry& e) {
+        if (rec_.segments.size() >= kMaxTraceSegments)
+            tree_too_large(tracer_.scene(), "took more than " + std::to_string(kMaxTraceSegments) +
+                                                " segments, the most a trace records");
         TraceSegment s;
         s.id = static_cast<int>(rec_.segments.size());
         const auto it = hits_.find(key(e.ray.origin));

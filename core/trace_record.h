@@ -3,6 +3,7 @@
 // the scene's threshold and limits (natural light), with what happened at its end: the
 // point, object and facet, the event, the cosines, Rs and Rp, the weight, the wavelength.
 // `refract trace` writes it as JSON (docs/scene-format.md, "Tracing one ray").
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct TraceSegment {
     Vec3 stokes_x{0, 0, 0};
 };
 
+// The most segments one record holds (docs/limits.md): a tree with more is refused as
+// /render, naming max_depth and threshold, before its record (a few hundred bytes a
+// segment, and its JSON) outgrows the memory. The walk's own bounds are far larger.
+constexpr std::size_t kMaxTraceSegments = std::size_t{1} << 16;
+
 struct TraceRecord {
     double wavelength_nm = 0;  // 0: an RGB ray with each material's nominal index
     std::vector<TraceSegment> segments;
@@ -48,7 +54,8 @@ struct TraceRecord {
 };
 
 // The tree of `ray` (at `wavelength_nm` when > 0: every dielectric with a dispersion
-// takes its index there). Throws InputError for an invalid scene or wavelength.
+// takes its index there). Throws InputError for an invalid scene or wavelength, or a tree
+// of more than kMaxTraceSegments segments.
 // With `polarisation`: the ray is light of that state travelling along it (a linear
 // state's angle measured from its reference as for a light), walked with exact
 // polarisation whatever the scene's model, each segment carrying its Stokes vector.

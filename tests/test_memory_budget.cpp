@@ -9,6 +9,7 @@
 #include <refract/core/memory.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
+#include <refract/core/trace_record.h>
 #include <refract/geometry/error.h>
 
 using namespace refract;
@@ -73,4 +74,29 @@ TEST_CASE("Memory estimate: the illumination maps' elements equal those the ligh
     // One pixel (refract trace) runs the light pass too: the default budget bounds its maps.
     s.settings.light_pass.element_size = 1e-5;
     CHECK_THROWS_WITH(render_pixel(s, 0, 0), Contains("/render/light_pass/element_size") && Contains("--max-memory"));
+}
+
+TEST_CASE("Work bound: trace refuses a tree of more than 2^16 segments (one ray into five close glass plates at "
+          "threshold 1e-10), naming /render, max_depth and threshold",
+          "[limits]") {
+    nlohmann::json objects = nlohmann::json::array();
+    for (int k = 0; k < 5; ++k) {  // plates 1 mm thick, 1 mm apart, across the z axis
+        const double z0 = 0.002 * k;
+        objects.push_back({{"type", "polyhedron"}, {"material", "glass"},
+                           {"planes", {{0, 0, 1, z0 + 0.001}, {0, 0, -1, -z0}, {1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 1, 0, 1}, {0, -1, 0, 1}}}});
+    }
+    nlohmann::json j = {{"camera", {{"location", {0, 0, -4}}, {"width", 4}, {"height", 3}}},
+                        {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.5}}}}},
+                        {"objects", objects},
+                        {"render", {{"threshold", 1e-10}, {"max_depth", 10000}}}};
+    const Ray axis{Vec3(0, 0, -1), Vec3(0, 0, 1)};
+    CHECK_THROWS_WITH(trace_ray(parse_scene(j, "plates.json"), axis),
+                      Contains("plates.json: /render: one ray tree took more than 65536 segments, the most a trace "
+                               "records (max_depth 10000, threshold 1e-10): raise /render/threshold"));
+    // At threshold 1e-3 the tree is small: its every segment recorded, the first the ray itself.
+    j["render"]["threshold"] = 1e-3;
+    const TraceRecord r = trace_ray(parse_scene(j, "plates.json"), axis);
+    CHECK(r.segments.size() > 20);
+    CHECK(r.segments.size() < kMaxTraceSegments);
+    CHECK(r.segments.front().parent == -1);
 }
