@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include <refract/core/image.h>
 #include <refract/geometry/error.h>
@@ -83,9 +82,7 @@ Vec3 rotate_about_y(const Vec3& d, double deg) {
 }
 
 EnvironmentMap load_environment_map(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": no such file");
-    Image img;
+    Image img;  // a missing file, a directory or a device each get their own message (core/image.h)
     try {
         img = read_image(path);
     } catch (const InputError& e) {

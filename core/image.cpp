@@ -1,12 +1,16 @@
 #include <refract/core/image.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <optional>
 #include <unistd.h>
 
 #include <refract/core/image_io.h>
+#include <refract/core/memory.h>
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 
@@ -111,10 +115,91 @@ std::string check_read_size(const ImageData& h) {
         values > 268435456.0)
         return "a " + std::to_string(h.width) + "x" + std::to_string(h.height) + " image of " +
                std::to_string(h.nchannels) + " channels is beyond the limit of 2^26 pixels and 2^28 values";
+    // Its float pixels as read and the doubles of the copy returned (RGB or every channel),
+    // within the default memory budget (core/memory.h).
+    const double bytes = values * 4 + std::fmax(3.0 * h.width * h.height, values) * 8;
+    if (bytes > static_cast<double>(default_memory_budget()))
+        return "a " + std::to_string(h.width) + "x" + std::to_string(h.height) + " image of " +
+               std::to_string(h.nchannels) + " channels would need about " + format_bytes(bytes) +
+               " of memory, over the budget of " + format_bytes(static_cast<double>(default_memory_budget())) +
+               " (3/4 of the physical memory)";
     return {};
 }
 
+// A PNM header (P1–P6, PF, Pf) read from the start of `in`: the bytes of pixels it needs
+// after it, at least (ASCII formats: one character per value), and its size as text, or
+// nothing when `in` does not start with one.
+struct PnmNeed {
+    double bytes = 0;
+    std::string what;
+};
+std::optional<PnmNeed> pnm_need(std::istream& in, std::uintmax_t& header_end) {
+    char magic[2] = {0, 0};
+    if (!in.read(magic, 2) || magic[0] != 'P') return std::nullopt;
+    const char kind = magic[1];
+    if (!((kind >= '1' && kind <= '6') || kind == 'F' || kind == 'f')) return std::nullopt;
+    // Whitespace-separated fields; '#' starts a comment to the end of the line.
+    const auto field = [&](std::string& token) {
+        token.clear();
+        int c = in.get();
+        while (c != EOF && (std::isspace(c) || c == '#')) {
+            if (c == '#')
+                while (c != EOF && c != '\n' && c != '\r') c = in.get();
+            c = in.get();
+        }
+        while (c != EOF && !std::isspace(c) && token.size() < 32) {
+            token += static_cast<char>(c);
+            c = in.get();
+        }
+        return c != EOF && !token.empty();  // the single whitespace after the field was read
+    };
+    const bool bitmap = kind == '1' || kind == '4', pfm = kind == 'F' || kind == 'f';
+    std::string w, h, max;
+    if (!field(w) || !field(h) || (!bitmap && !field(max))) return std::nullopt;
+    double width = 0, height = 0, maxval = 1;
+    try {
+        width = std::stod(w);
+        height = std::stod(h);
+        if (!bitmap && !pfm) maxval = std::stod(max);
+    } catch (const std::exception&) {
+        return std::nullopt;  // malformed: the reader says so
+    }
+    const double channels = kind == '3' || kind == '6' || kind == 'F' ? 3 : 1;
+    const double per_sample = pfm ? 4 : maxval < 256 ? 1 : 2;
+    const double pixels = width * height;
+    header_end = static_cast<std::uintmax_t>(in.tellg());
+    PnmNeed need;
+    need.what = w + "x" + h + " P" + std::string(1, kind);
+    if (kind == '4') need.bytes = std::ceil(width / 8) * height;
+    else if (kind <= '3') need.bytes = pixels * channels;  // ASCII: a character per value at least
+    else need.bytes = pixels * channels * per_sample;
+    return need;
+}
+
+// An image is read from a regular file (OpenImageIO would read a pipe or a device without
+// end), and a PNM file must hold the pixels its header announces: a truncated file is
+// refused before a pixel is allocated. InputError naming the path.
+void check_image_file(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (st.type() == fs::file_type::not_found) throw InputError(path + ": no such file");
+    if (ec) throw InputError(path + ": cannot be read (" + ec.message() + ")");
+    if (fs::is_directory(st)) throw InputError(path + ": is a directory, not an image file");
+    if (!fs::is_regular_file(st))
+        throw InputError(path + ": not a regular file (an image is read from a file, not a pipe or a device)");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    std::ifstream in(path, std::ios::binary);
+    if (ec || !in) throw InputError(path + ": cannot open image file");
+    std::uintmax_t header_end = 0;
+    if (const auto need = pnm_need(in, header_end); need && need->bytes > static_cast<double>(size - header_end))
+        throw InputError(path + ": truncated: its header announces a " + need->what + " image of " +
+                         format_value(need->bytes) + " bytes of pixels, the file holds " +
+                         std::to_string(size - header_end) + " after the header");
+}
+
 ImageData read_data(const std::string& path) {
+    check_image_file(path);
     ImageData d;
     throw_if_failed(image_io().read(path, d, check_read_size), path);
     return d;

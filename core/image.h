@@ -62,7 +62,9 @@ Channels read_channels(const std::string& path);
 
 // Reads any image OpenImageIO can read, as stored (integer formats scaled to [0, 1],
 // no transfer function applied: POV-Ray's File_Gamma=1.0 PNGs are linear as read).
-// Throws InputError naming the path.
+// Throws InputError naming the path; before reading a pixel for a file that is missing,
+// a directory, not a regular file (a pipe, a device), a PNM file shorter than its header
+// announces, or an image beyond 2^26 pixels or 2^28 values (docs/limits.md).
 Image read_image(const std::string& path);
 
 // sRGB transfer function (IEC 61966-2-1), linear → encoded, clamped to [0, 1].

@@ -138,7 +138,8 @@ TEST_CASE("Environment map: rotation_deg 90 shows in R·d what the unturned map 
         check_close(turned.background.radiance(rotate_about_y(d, 90)), plain.background.radiance(d), 1e-12);
 }
 
-TEST_CASE("Environment light: a missing map, a non-positive scale, a NaN or negative pixel are refused, naming the field",
+TEST_CASE("Environment light: a missing map, a directory, a device, a truncated PPM, a non-positive scale, a NaN or "
+          "negative pixel are refused, naming the field",
           "[environment]") {
     const TempDir dir;
     const std::string good = write_map(dir, "good.exr");
@@ -156,6 +157,19 @@ TEST_CASE("Environment light: a missing map, a non-positive scale, a NaN or nega
     const std::string text = (dir.path / "not-an-image.exr").string();
     { std::ofstream(text) << "not an image"; }
     CHECK_THROWS_WITH(refused(map_background(text)), Catch::Contains("/background/map:") && Catch::Contains("not-an-image.exr"));
+    // A directory, a device and a PPM shorter than its header: each its own reason, before
+    // reading (the PPM's 8192 × 8192 pixels are never allocated).
+    fs::create_directories(dir.path / "adir.exr");
+    CHECK_THROWS_WITH(refused(map_background((dir.path / "adir.exr").string())),
+                      Catch::Contains("/background/map:") && Catch::Contains("adir.exr: is a directory, not an image file"));
+    CHECK_THROWS_WITH(refused(map_background("/dev/zero")),
+                      Catch::Contains("/background/map: /dev/zero: not a regular file"));
+    const std::string ppm = (dir.path / "short.ppm").string();
+    { std::ofstream(ppm, std::ios::binary) << "P6\n# a comment\n8192 8192\n255\n" << std::string(1000, 'x'); }
+    CHECK_THROWS_WITH(refused(map_background(ppm)),
+                      Catch::Contains("/background/map:") &&
+                          Catch::Contains("short.ppm: truncated: its header announces a 8192x8192 P6 image of "
+                                          "201326592 bytes of pixels, the file holds 1000 after the header"));
     CHECK_THROWS_WITH(refused({{"type", "environment"}, {"map", good}, {"color", {1, 1, 1}}}),
                       Catch::Contains("/background: an environment needs either \"color\" or \"map\""));
     CHECK_THROWS_WITH(refused({{"type", "environment"}, {"color", {1, 1, 1}}, {"spectrum", "d65"}}),

@@ -59,10 +59,16 @@ IoStatus write(const std::string& file, int width, int height, int nchannels, Pi
     });
 }
 
+// OpenImageIO's message, or a reason when it gives none (its PNM reader, on a file
+// shorter than its header announces).
+std::string reason(const std::string& error) {
+    return "cannot read image: " + (error.empty() ? std::string("truncated or malformed (no detail given)") : error);
+}
+
 IoStatus read(const std::string& path, ImageData& out, std::string (*check)(const ImageData& header)) {
     return guarded([&]() -> IoStatus {
         auto in = OIIO::ImageInput::open(path);
-        if (!in) return {"cannot read image: " + OIIO::geterror()};
+        if (!in) return {reason(OIIO::geterror())};
         const OIIO::ImageSpec& spec = in->spec();
         out.width = spec.width;
         out.height = spec.height;
@@ -71,7 +77,7 @@ IoStatus read(const std::string& path, ImageData& out, std::string (*check)(cons
         out.names = spec.channelnames;
         out.data.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
         if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.data.data()))
-            return {"cannot read image: " + in->geterror()};
+            return {reason(in->geterror())};
         for (const auto& p : spec.extra_attribs)
             if (p.type() == OIIO::TypeDesc::STRING) out.attributes.emplace_back(p.name().string(), p.get_string());
         return {};
