@@ -40,7 +40,8 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
     sub->add_option("--polar-bins", a->polar_bins, "Sphere binning: polar bins, uniform in cos theta (180)")->check(CLI::Range(1, 1 << 14));
     sub->add_option("--classes", a->classes, "Event classes: reflected, 0, 1, ... internal reflections, the last gathering the rest (5)")
         ->check(CLI::Range(2, 64));
-    sub->add_option("--photons", a->photons, "Photons per light and wavelength (1000000)");
+    sub->add_option("--photons", a->photons, "Photons per light and wavelength, 1 to 2^31 (1000000)")
+        ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 31));  // a negative count refused, not wrapped
     sub->add_option("--wavelengths", a->wavelengths,
                     "Wavelengths in nm (default: the scene's sampling when a material is dispersive or absorbing, else 550)");
     sub->add_option("--seed", a->seed, "Random seed (7)");

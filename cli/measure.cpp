@@ -26,10 +26,30 @@ struct MeasureArgs {
 
 std::string csv_number(double v) { return refract::format_significant(v, 10); }
 
+// --region and --line take pixels of the image: corners inside it, in order (a region's
+// first corner its top left). InputError naming the option and the image's size.
+void check_pixels(const MeasureArgs& a, const refract::Image& img) {
+    const auto refuse = [&](const char* option, const std::vector<int>& v, const std::string& rule) {
+        throw refract::InputError(std::string(option) + " " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " +
+                                  std::to_string(v[2]) + " " + std::to_string(v[3]) + ": " + rule + " (the image is " +
+                                  std::to_string(img.width) + "x" + std::to_string(img.height) + ")");
+    };
+    const auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < img.width && y < img.height; };
+    const std::string w = std::to_string(img.width - 1), h = std::to_string(img.height - 1);
+    if (!a.region.empty()) {
+        const auto& r = a.region;
+        if (!inside(r[0], r[1]) || !inside(r[2], r[3]) || r[0] > r[2] || r[1] > r[3])
+            refuse("--region", r, "needs 0 <= X0 <= X1 <= " + w + " and 0 <= Y0 <= Y1 <= " + h);
+    }
+    if (!a.line.empty() && (!inside(a.line[0], a.line[1]) || !inside(a.line[2], a.line[3])))
+        refuse("--line", a.line, "both ends must be pixels of the image, X in [0, " + w + "], Y in [0, " + h + "]");
+}
+
 // The measurement the options ask for, as CSV text.
 std::string measure_csv(const MeasureArgs& a, const refract::Image& img) {
     using namespace refract;
     namespace v = refract::validation;
+    check_pixels(a, img);
     std::ostringstream csv;
     if (!a.line.empty()) {
         const auto pixels = v::line_pixels(a.line[0], a.line[1], a.line[2], a.line[3]);
@@ -49,12 +69,7 @@ std::string measure_csv(const MeasureArgs& a, const refract::Image& img) {
         if (!a.region.empty()) rect = {a.region[0], a.region[1], a.region[2], a.region[3]};
         std::optional<Image> m;
         if (!a.mask.empty()) m = read_image(a.mask);
-        v::RegionStats s;
-        try {
-            s = v::region_stats(img, rect, m ? &*m : nullptr);
-        } catch (const InputError& e) {
-            throw InputError(a.image + ": " + e.what());
-        }
+        const v::RegionStats s = v::region_stats(img, rect, m ? &*m : nullptr);
         csv << "channel,pixels,mean,sum,min,max\n";
         const char* names[3] = {"r", "g", "b"};
         for (int c = 0; c < 3; ++c) {

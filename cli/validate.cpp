@@ -24,7 +24,7 @@ struct ValidateArgs {
     bool caustics = false;
     int random = -1;
     std::uint64_t seed = 1;
-    int width = 80, height = 60;
+    std::vector<int> size{80, 60};  // W H
     bool no_dispersion = false, no_shrink = false;
     double timeout = 60;
 };
@@ -44,15 +44,9 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
                     "Generate N random compat scenes, compare each with POV-Ray, shrink failures to minimal cases")
         ->check(CLI::Range(0, 1000000));
     sub->add_option("--seed", args->seed, "--random: generator seed of the first scene (scene k has seed S + k)");
-    sub->add_option("--size", [args](const std::vector<std::string>& v) {
-        try {
-            args->width = std::stoi(v.at(0));
-            args->height = std::stoi(v.at(1));
-        } catch (const std::exception&) {
-            return false;
-        }
-        return args->width > 0 && args->height > 0 && args->width <= 4096 && args->height <= 4096;
-    }, "--random: image size W H (80 60)")->expected(2);
+    sub->add_option("--size", args->size, "--random: image size W H, each 1 to 4096 (80 60)")
+        ->expected(2)
+        ->check(CLI::Range(1, 4096));
     sub->add_flag("--no-dispersion", args->no_dispersion, "--random: no dispersive materials");
     sub->add_flag("--no-shrink", args->no_shrink, "--random: do not shrink failures");
     sub->add_option("--timeout", args->timeout, "--random: POV-Ray time limit per scene, seconds (60)")
@@ -115,8 +109,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             ro.count = args->random;
             ro.seed = args->seed;
             ro.out_dir = args->out_dir;
-            ro.scene.width = args->width;
-            ro.scene.height = args->height;
+            ro.scene.width = args->size[0];
+            ro.scene.height = args->size[1];
             ro.scene.dispersion = !args->no_dispersion;
             ro.shrink = !args->no_shrink;
             ro.jobs = args->threads;
