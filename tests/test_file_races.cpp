@@ -205,3 +205,24 @@ TEST_CASE("Temporary-file race, another user: as root, writing into a 0777 direc
     CHECK(swaps > 0);
     fs::remove_all(root);
 }
+
+TEST_CASE("Every image format refract writes goes through the temporary's descriptor and reads back", "[files]") {
+    const fs::path dir = test::fresh_dir("race", "formats");
+    Image img(5, 3);
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 5; ++i) img.set(i, j, {0.1 * i, 0.2 * j, 0.5});
+    for (const char* ext : {".exr", ".hdr", ".tif", ".png", ".jpg", ".ppm", ".bmp"}) {
+        INFO(ext);
+        const fs::path out = dir / (std::string("img") + ext);
+        write_image(out.string(), img);
+        const Image back = read_image(out.string());
+        REQUIRE(back.width == 5);
+        REQUIRE(back.height == 3);
+        const bool linear = std::string(ext) == ".exr" || std::string(ext) == ".hdr" || std::string(ext) == ".tif";
+        // Linear formats hold the value (.hdr: 8-bit mantissas); the others hold it sRGB-encoded.
+        const double expected = linear ? 0.4 : srgb_encode(0.4);
+        CHECK(back.at(2, 2)[1] == Approx(expected).margin(std::string(ext) == ".jpg" ? 0.05 : 0.01));
+    }
+    for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string().rfind(".refract-tmp", 0) != 0);
+    fs::remove_all(dir);
+}

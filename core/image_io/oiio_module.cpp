@@ -92,7 +92,9 @@ private:
 };
 
 // The writer for the extension of `name`, set to write through `proxy`; an error status
-// when there is none or it cannot write through a proxy.
+// when there is none or it cannot write through a proxy. (OpenImageIO 2.4.7's TIFF writer
+// through a proxy writes a broken file once the header needs an Exif directory, as an
+// oiio:ColorSpace does: refract's TIFFs are linear float and carry none.)
 IoStatus writer_for(const std::string& name, OIIO::Filesystem::IOProxy& proxy, std::unique_ptr<OIIO::ImageOutput>& out) {
     out = OIIO::ImageOutput::create(name);
     if (!out) return {"no image writer for this extension"};
