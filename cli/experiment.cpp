@@ -7,6 +7,7 @@
 #include <refract/experiments/common.h>
 #include <refract/experiments/experiment.h>
 #include <refract/experiments/plot.h>
+#include <refract/geometry/error.h>
 
 namespace {
 
@@ -34,9 +35,15 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
         }
         const auto& e = ex::find(a->name);
         if (a->out.empty()) a->out = "out/" + e.name;
-        ex::ensure_dir(a->out);  // before the work: a bad -o is bad input
+        const bool created = ex::ensure_dir(a->out);  // before the work: a bad -o is bad input
         const auto t0 = std::chrono::steady_clock::now();
-        e.run({a->out, a->threads, a->quick});
+        try {
+            e.run({a->out, a->threads, a->quick});
+        } catch (const refract::InputError&) {
+            std::error_code ec;
+            if (created) std::filesystem::remove_all(a->out, ec);  // refused: nothing left
+            throw;
+        }
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::cout << e.name << ": results in " << a->out << " (" << ex::fmt(s, 3) << " s)\n";
     });

@@ -1,6 +1,7 @@
 // refract farfield SCENE -o DIR [--binning sphere|axis] [--axis X Y Z] [--photons N] ...
 // The far-field detector (core/far_field.h): the power leaving the scene's transparent
 // objects binned by direction, per wavelength, event class and Stokes component.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -23,6 +24,39 @@ struct FarFieldArgs {
     bool no_plot = false;
     bool no_lanes = false;
 };
+
+// The detector's run and its files, once the output directory is checked.
+void run(const FarFieldArgs* a, const refract::Scene& scene, const refract::experiments::FarFieldFiles& files) {
+    using namespace refract;
+    FarFieldSettings s;
+    s.binning = a->binning == "axis" ? FarFieldSettings::Binning::Axis : FarFieldSettings::Binning::Sphere;
+    if (!a->axis.empty()) s.axis = Vec3(a->axis[0], a->axis[1], a->axis[2]);
+    if (!a->reference.empty()) s.reference = Vec3(a->reference[0], a->reference[1], a->reference[2]);
+    s.angle_bins = a->bins;
+    s.azimuth_bins = a->azimuth_bins;
+    s.polar_bins = a->polar_bins;
+    s.classes = a->classes;
+    s.photons = a->photons;
+    s.seed = a->seed;
+    s.max_memory = a->max_memory;
+    s.wavelengths = a->wavelengths;
+    s.trace.packets = !a->no_lanes;
+    const FarFieldResult r = far_field(scene, s, a->threads);
+    const auto written = experiments::write_far_field(a->output, experiments::far_field_tables(r), "far field of " + a->scene, files);
+    std::cout << "far field: " << r.photons << " photons, " << r.segments << " segments, " << r.wavelengths.size()
+              << " wavelength(s), " << experiments::fmt(r.seconds, 3) << " s\n";
+    for (size_t w = 0; w < r.wavelengths.size(); ++w) {
+        double scattered = 0;
+        for (int c = 0; c < r.classes; ++c)
+            for (int b = 0; b < r.bins; ++b) scattered += r.at(static_cast<int>(w), c, 0, b);
+        if (w == 0 || w + 1 == r.wavelengths.size())
+            std::cout << "  " << experiments::fmt(r.wavelengths[w]) << " nm: scattered " << experiments::fmt(scattered, 6)
+                      << ", unscattered " << experiments::fmt(r.unscattered[w], 6) << ", absorbed "
+                      << experiments::fmt(r.absorbed[w], 6) << ", dropped by the limits "
+                      << experiments::fmt(r.dropped[w], 6) << "\n";
+    }
+    for (const auto& f : written) std::cout << "  " << a->output << "/" << f << "\n";
+}
 
 refract::cli::Registrar reg{17, [](CLI::App& app) {
     auto a = std::make_shared<FarFieldArgs>();
@@ -54,39 +88,19 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
     sub->callback([a] {
         using namespace refract;
         const Scene scene = load_scene(a->scene);
-        experiments::ensure_dir(a->output);  // before the work
-        FarFieldSettings s;
-        s.binning = a->binning == "axis" ? FarFieldSettings::Binning::Axis : FarFieldSettings::Binning::Sphere;
-        if (!a->axis.empty()) s.axis = Vec3(a->axis[0], a->axis[1], a->axis[2]);
-        if (!a->reference.empty()) s.reference = Vec3(a->reference[0], a->reference[1], a->reference[2]);
-        s.angle_bins = a->bins;
-        s.azimuth_bins = a->azimuth_bins;
-        s.polar_bins = a->polar_bins;
-        s.classes = a->classes;
-        s.photons = a->photons;
-        s.seed = a->seed;
-        s.max_memory = a->max_memory;
-        s.wavelengths = a->wavelengths;
-        s.trace.packets = !a->no_lanes;
         if (scene.lights.empty() && scene.background.kind != Background::Kind::Environment)
             throw InputError(a->scene + ": /lights: the far-field detector needs a light or an environment background");
-        const FarFieldResult r = far_field(scene, s, a->threads);
         experiments::FarFieldFiles files;
         files.plot = !a->no_plot;
-        const auto written = experiments::write_far_field(a->output, experiments::far_field_tables(r), "far field of " + a->scene, files);
-        std::cout << "far field: " << r.photons << " photons, " << r.segments << " segments, " << r.wavelengths.size()
-                  << " wavelength(s), " << experiments::fmt(r.seconds, 3) << " s\n";
-        for (size_t w = 0; w < r.wavelengths.size(); ++w) {
-            double scattered = 0;
-            for (int c = 0; c < r.classes; ++c)
-                for (int b = 0; b < r.bins; ++b) scattered += r.at(static_cast<int>(w), c, 0, b);
-            if (w == 0 || w + 1 == r.wavelengths.size())
-                std::cout << "  " << experiments::fmt(r.wavelengths[w]) << " nm: scattered " << experiments::fmt(scattered, 6)
-                          << ", unscattered " << experiments::fmt(r.unscattered[w], 6) << ", absorbed "
-                          << experiments::fmt(r.absorbed[w], 6) << ", dropped by the limits "
-                          << experiments::fmt(r.dropped[w], 6) << "\n";
+        const bool created = experiments::ensure_dir(a->output);  // before the work, with the files it will hold
+        try {
+            experiments::check_far_field_outputs(a->output, files);
+            run(a.get(), scene, files);
+        } catch (const InputError&) {
+            std::error_code ec;
+            if (created) std::filesystem::remove_all(a->output, ec);  // refused: nothing left
+            throw;
         }
-        for (const auto& f : written) std::cout << "  " << a->output << "/" << f << "\n";
     });
 }};
 

@@ -23,6 +23,39 @@ struct RenderArgs {
     std::uint64_t max_memory = 0;
 };
 
+// OUT.stem + suffix beside OUT (OUT.lost.exr, OUT.spectral.exr).
+std::string sidecar(const std::string& output, const std::string& suffix) {
+    const std::filesystem::path p(output);
+    return (p.parent_path() / p.stem()).string() + suffix;
+}
+
+// Writes the image and its sidecars, appending each path to `done` once it is written.
+void write_outputs(const RenderArgs& args, const refract::RenderResult& result, std::vector<std::string>& done) {
+    const int w = result.image.width, h = result.image.height;
+    refract::write_image(args.output, result.image, {args.linear16});
+    done.push_back(args.output);
+    if (result.polarisation)
+        for (const auto& p : refract::write_polarisation(args.output, w, h, *result.polarisation)) done.push_back(p);
+    if (args.spectral) {
+        std::vector<std::string> names;
+        std::string list;
+        for (double nm : result.wavelengths) {
+            std::ostringstream s;
+            s << nm;
+            names.push_back(s.str() + "nm");
+            list += (list.empty() ? "" : " ") + s.str();
+        }
+        const std::string path = sidecar(args.output, ".spectral.exr");
+        refract::write_channels(path, w, h, names, result.spectral, {{"refract:wavelengths_nm", list}});
+        done.push_back(path);
+    }
+    if (args.lost) {
+        const std::string path = sidecar(args.output, ".lost.exr");
+        refract::write_channels(path, w, h, {"depth", "limits", "threshold"}, result.lost);
+        done.push_back(path);
+    }
+}
+
 refract::cli::Registrar reg{10, [](CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     auto* sub = app.add_subcommand("render", "Render a scene file to an image (.exr linear, .png sRGB)");
@@ -48,6 +81,14 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     sub->callback([args] {
         refract::check_image_path(args->output);  // before the work, not after it
         const refract::Scene scene = refract::load_scene(args->scene);
+        // Every file the render writes, checked before the work too: the image, then the
+        // sidecars its options and the scene ask for.
+        std::vector<std::string> outputs{args->output};
+        if (scene.settings.polarisation == refract::PolarisationModel::Exact)
+            for (const auto& p : refract::polarisation_paths(args->output)) outputs.push_back(p);
+        if (args->spectral) outputs.push_back(sidecar(args->output, ".spectral.exr"));
+        if (args->lost) outputs.push_back(sidecar(args->output, ".lost.exr"));
+        for (const auto& p : outputs) refract::check_image_path(p);
         refract::RenderOptions opt;
         opt.threads = args->threads;
         opt.progress = refract::cli::stderr_is_terminal();
@@ -57,26 +98,14 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         opt.trace.facet_local = !args->full_plane_loop;
         opt.trace.packets = !args->no_lanes;
         const auto result = refract::render(scene, opt);
-        refract::write_image(args->output, result.image, {args->linear16});
-        if (result.polarisation)
-            refract::write_polarisation(args->output, result.image.width, result.image.height, *result.polarisation);
-        if (args->spectral) {
-            const std::filesystem::path p(args->output);
-            std::vector<std::string> names;
-            std::string list;
-            for (double nm : result.wavelengths) {
-                std::ostringstream s;
-                s << nm;
-                names.push_back(s.str() + "nm");
-                list += (list.empty() ? "" : " ") + s.str();
-            }
-            refract::write_channels((p.parent_path() / p.stem()).string() + ".spectral.exr", result.image.width,
-                                    result.image.height, names, result.spectral, {{"refract:wavelengths_nm", list}});
-        }
-        if (args->lost) {
-            const std::filesystem::path p(args->output);
-            refract::write_channels((p.parent_path() / p.stem()).string() + ".lost.exr", result.image.width,
-                                    result.image.height, {"depth", "limits", "threshold"}, result.lost);
+        // A write refused after the first (a disk full) removes what this run wrote.
+        std::vector<std::string> done;
+        try {
+            write_outputs(*args, result, done);
+        } catch (const refract::InputError&) {
+            std::error_code ec;
+            for (const auto& p : done) std::filesystem::remove(p, ec);
+            throw;
         }
         const std::string warning = result.stats.lost_warning();
         if (!warning.empty()) std::cerr << "refract render: " << args->scene << ": " << warning << "\n";

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/sweep_mpi.h"
+#include <refract/experiments/gem_metrics.h>
 #include <refract/experiments/gem_sweep_file.h>
 #include <refract/core/spectrum/dispersion.h>
 #include <refract/geometry/error.h>
@@ -42,14 +43,17 @@ sw::Sweep make_sweep(const Args& a) {
     s.metric.wavelengths = a.wavelengths;
     s.metric.exact_polarisation = a.polarisation == "exact";
     s.metric.seed = a.seed;
+    refract::gem_metrics::validate(s.metric);  // what the library would refuse, before any cut
     return s;
 }
 
 void check_output(const std::string& out) {
     if (out.empty()) throw refract::InputError("-o: the output CSV is required");
-    const std::filesystem::path dir = std::filesystem::path(out).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw refract::InputError("-o " + out + ": the directory " + dir.string() + " does not exist");
+    try {
+        sw::check_output(out);
+    } catch (const refract::InputError& e) {
+        throw refract::InputError(std::string("-o ") + e.what());
+    }
 }
 
 void report(const sw::Sweep& s, const std::string& out, std::int64_t resumed, std::int64_t computed,
@@ -67,8 +71,9 @@ void run_mpi(const sw::Sweep& s, const Args& a, const refract::cli::mpi::Session
     sw::Lines lines;
     if (mpi.rank() == 0) {
         try {
-            lines = sw::recover(s, a.output);
-            status = "ok\n";
+            bool found = false;
+            lines = sw::recover(s, a.output, &found);
+            status = found ? "ok resumed\n" : "ok\n";
             for (std::int64_t i = 0; i < s.grid.size(); ++i)
                 if (!lines.count(i)) status += std::to_string(i) + "\n";
         } catch (const refract::InputError& e) {
@@ -77,10 +82,11 @@ void run_mpi(const sw::Sweep& s, const Args& a, const refract::cli::mpi::Session
     }
     status = mpi.broadcast(status);
     if (status.rfind("error\n", 0) == 0) throw refract::InputError(status.substr(6));
+    const bool resuming = status.rfind("ok resumed\n", 0) == 0;
     std::vector<std::int64_t> share;
     {
         std::int64_t k = 0;
-        for (size_t b = 3; b < status.size();) {
+        for (size_t b = status.find('\n') + 1; b < status.size();) {
             const size_t e = status.find('\n', b);
             if (k++ % mpi.size() == mpi.rank()) share.push_back(std::stoll(status.substr(b, e - b)));
             b = e + 1;
@@ -89,13 +95,18 @@ void run_mpi(const sw::Sweep& s, const Args& a, const refract::cli::mpi::Session
     const std::string journal = mpi.rank() == 0 ? sw::journal_path(a.output) : sw::part_journal_path(a.output, mpi.rank());
     std::string mine;
     std::int64_t impossible = 0;
-    {
+    try {
         sw::JournalWriter writer(journal, sw::fingerprint(s));
         const auto rows = sw::run(s, share, a.threads, [&](const sw::Row& r) { writer.append(sw::csv_line(r)); });
         for (const auto& r : rows) {
             mine += sw::csv_line(r) + "\n";
             impossible += !r.possible;
         }
+    } catch (const refract::InputError&) {
+        // Refused after it started: the journal this run began goes (rank 0's only when
+        // there was none to resume).
+        if (mpi.rank() > 0 || !resuming) sw::remove_new_journal(journal);
+        throw;
     }
     const std::string all = mpi.gather(mine);
     if (mpi.rank() == 0) {
@@ -108,7 +119,14 @@ void run_mpi(const sw::Sweep& s, const Args& a, const refract::cli::mpi::Session
             ++computed;
             b = e + 1;
         }
-        sw::finish(s, a.output, lines);
+        try {
+            sw::finish(s, a.output, lines);
+        } catch (const refract::InputError&) {
+            if (!resuming)  // every journal of this run, the other ranks' too (they wait at the barrier)
+                for (int r = 0; r < mpi.size(); ++r)
+                    sw::remove_new_journal(r == 0 ? journal : sw::part_journal_path(a.output, r));
+            throw;
+        }
         report(s, a.output, resumed, computed, impossible, mpi.size());
     }
     mpi.barrier();
@@ -151,7 +169,7 @@ refract::cli::Registrar reg{35, [](CLI::App& app) {
     }
     sub->add_option("-o,--output", a->output, "Output CSV (its journal OUT.journal lets an interrupted sweep resume)");
     sub->add_option("--material", a->material, "Material (catalogue name, core/spectrum/dispersion.h)");
-    sub->add_option("--rays", a->rays, "Eye rays per metric")->check(CLI::Range(1, 1 << 26));
+    sub->add_option("--rays", a->rays, "Eye rays per metric")->check(CLI::Range(16, 1 << 26));  // gem_metrics::validate: from 16
     sub->add_option("--wavelengths", a->wavelengths, "Spectral bands, 400..700 nm")->check(CLI::Range(1, 301));
     sub->add_option("--polarisation", a->polarisation, "exact (Stokes-Mueller) or natural");
     sub->add_option("--seed", a->seed, "Base seed (each cut's seed derives from it and the cut's parameters)");

@@ -97,9 +97,9 @@ void write_atomically(const std::string& path, int width, int height, int nchann
                       const std::vector<std::string>& names, const std::string& colorspace,
                       const std::vector<std::pair<std::string, std::string>>& attributes) {
     const ImageIoModule& io = image_io();
-    // The temporary keeps the extension so that OpenImageIO picks the right writer.
-    TempFile tmp(path, true);
-    throw_if_failed(io.write(tmp.path(), width, height, nchannels, type, data, names, colorspace, attributes), path);
+    // Written through the temporary's descriptor; the target's extension picks the writer.
+    TempFile tmp(path);
+    throw_if_failed(io.write(tmp.fd(), path, width, height, nchannels, type, data, names, colorspace, attributes), path);
     tmp.commit();
 }
 

@@ -42,10 +42,12 @@ struct ImageIoModule {
     unsigned size;  // built from the same tree
     // True when OpenImageIO has a writer for the file's extension.
     bool (*can_write)(const std::string& path);
-    // Writes `data` (width × height × nchannels values of `type`, interleaved) to
-    // `file`; the format follows its extension. Empty `names`: OpenImageIO's defaults.
-    // `colorspace` (may be empty) and `attributes` go into the header.
-    IoStatus (*write)(const std::string& file, int width, int height, int nchannels, PixelType type,
+    // Writes `data` (width × height × nchannels values of `type`, interleaved) through
+    // `fd`, an empty file open for reading and writing (a TempFile's, geometry/atomic_file.h;
+    // OpenImageIO writes through an IOProxy on it and opens no file by name); the format
+    // follows the extension of `file`, the target's name. Empty `names`: OpenImageIO's
+    // defaults. `colorspace` (may be empty) and `attributes` go into the header.
+    IoStatus (*write)(int fd, const std::string& file, int width, int height, int nchannels, PixelType type,
                       const void* data, const std::vector<std::string>& names, const std::string& colorspace,
                       const std::vector<std::pair<std::string, std::string>>& attributes);
     // Reads every channel of `path`. `check(header)` runs on the header before any pixel
@@ -57,11 +59,12 @@ struct ImageIoModule {
     IoStatus (*compare)(const double* a, const double* b, int width, int height, double tolerance,
                         CompareStats& out);
     IoStatus (*clamp01)(const double* rgb, int width, int height, double* out);
-    // The log-scale difference heat map (validation/compare.h), 8-bit, written to `file`.
-    IoStatus (*heatmap)(const double* a, const double* b, int width, int height, const std::string& file);
+    // The log-scale difference heat map (validation/compare.h), 8-bit, written through
+    // `fd` as `write` does, in the format of the extension of `file`.
+    IoStatus (*heatmap)(const double* a, const double* b, int width, int height, int fd, const std::string& file);
 };
 
-constexpr int kImageIoVersion = 1;
+constexpr int kImageIoVersion = 2;
 
 // The module's one entry point.
 using ImageIoEntry = const ImageIoModule* (*)();

@@ -93,12 +93,14 @@ LineFit loglog_fit(const std::vector<double>& x, const std::vector<double>& y) {
     return f;
 }
 
-void ensure_dir(const std::string& dir) {
+bool ensure_dir(const std::string& dir) {
     std::error_code ec;
+    const bool existed = std::filesystem::exists(std::filesystem::symlink_status(dir, ec));
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir))
         throw InputError(dir + ": cannot create the output directory" + (ec ? " (" + ec.message() + ")" : std::string()));
     if (::access(dir.c_str(), W_OK) != 0) throw InputError(dir + ": the output directory is not writable");
+    return !existed;
 }
 
 nlohmann::json vec(double x, double y, double z) { return nlohmann::json::array({x, y, z}); }

@@ -29,8 +29,8 @@ struct LineFit {
 LineFit loglog_fit(const std::vector<double>& x, const std::vector<double>& y);
 
 // Creates DIR (and parents); throws InputError naming it when it cannot be created or
-// written (bad input: exit 2).
-void ensure_dir(const std::string& dir);
+// written (bad input: exit 2). True when DIR itself did not exist before.
+bool ensure_dir(const std::string& dir);
 
 // JSON helpers for scene literals.
 nlohmann::json vec(double x, double y, double z);

@@ -6,6 +6,7 @@
 
 #include <refract/core/image.h>
 #include <refract/core/spectrum/cie.h>
+#include <refract/geometry/error.h>
 #include <refract/experiments/plot.h>
 
 namespace refract::experiments {
@@ -165,6 +166,16 @@ FarFieldTables far_field_tables(const FarFieldResult& r) {
     }
     for (int c = 0; c < r.classes; ++c) t.class_names.push_back(r.class_name(c));
     return t;
+}
+
+void check_far_field_outputs(const std::string& dir, const FarFieldFiles& opt) {
+    std::vector<std::string> names{"far_field.csv", "far_field_summary.csv", "far_field.exr"};
+    if (opt.plot)
+        for (const char* n : {"far_field_plot.csv", "far_field.gp", "far_field.png", "far_field.pdf"}) names.push_back(n);
+    std::error_code ec;
+    for (const auto& n : names)
+        if (std::filesystem::is_directory(std::filesystem::path(dir) / n, ec))
+            throw InputError(dir + "/" + n + ": is a directory, not a file");
 }
 
 std::vector<std::string> write_far_field(const std::string& dir, const FarFieldTables& t, const std::string& title,

@@ -27,6 +27,10 @@ struct FarFieldFiles {
     bool plot = true;  // false: no gnuplot figure
 };
 
+// Refuses (InputError naming it) a directory at the name of a file write_far_field would
+// write into `dir`: before the work.
+void check_far_field_outputs(const std::string& dir, const FarFieldFiles& opt);
+
 // Everything the files above hold, computed from a FarFieldResult (the θ profiles, the
 // balance, the map's channels and colour, the figure's data), so that writing is formatting.
 struct FarFieldTables {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 
@@ -19,6 +20,7 @@ namespace {
 constexpr int kMaxDecimals = 6;
 constexpr std::int64_t kMaxValues = 1000000;
 constexpr std::int64_t kMaxCuts = 100000000;
+constexpr std::int64_t kMaxUnits = 1000000000000000;  // 10^15: a value's magnitude in units of 10^-decimals
 
 std::int64_t pow10(int d) {
     std::int64_t p = 1;
@@ -139,6 +141,12 @@ Axis parse_axis(const std::string& parameter, const std::string& text) {
     Axis a;
     a.name = parameter;
     for (const auto& x : d) a.decimals = std::max(a.decimals, x.decimals);
+    // Each value in units of 10^-decimals must stay within ±10^15 (so that STOP − START and
+    // START + STEP·i fit an int64): checked before the multiplication that could overflow.
+    for (size_t k = 0; k < d.size(); ++k)
+        if (std::abs(d[k].units) > kMaxUnits / pow10(a.decimals - d[k].decimals))
+            fail("'" + parts[k] + "' is too large: with " + std::to_string(a.decimals) +
+                 " decimals a value stays below 1e" + std::to_string(15 - a.decimals));
     const auto units = [&](const Decimal& x) { return x.units * pow10(a.decimals - x.decimals); };
     a.start = units(d[0]);
     if (parts.size() == 1) return a;

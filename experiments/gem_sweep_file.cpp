@@ -3,10 +3,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <refract/geometry/atomic_file.h>
@@ -28,20 +27,25 @@ std::int64_t line_index(const std::string& line) {
 
 namespace {
 
+constexpr const char* kJournal = "the sweep's journal";
+
 // Reads one journal into `lines`; false when the file does not exist.
 bool read_journal(const std::string& path, const std::string& fingerprint, std::int64_t size, Lines& lines) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str();
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0 && errno == ENOENT) return false;
+    const std::string text = read_own_file(path, kJournal);  // no link followed, a regular file
     size_t pos = text.find('\n');
     if (pos == std::string::npos) return true;  // torn before its first line: nothing finished
     const std::string head = text.substr(0, pos);
-    if (head != "# " + fingerprint)
-        throw InputError(path + ": the journal of an interrupted sweep with other parameters (" +
-                         (head.size() > 2 ? head.substr(2) : head) +
+    if (head != "# " + fingerprint) {
+        // Another sweep's fingerprint is shown (refract's own line); any other text is not.
+        const std::string sweep = "# refract sweep ";
+        if (head.compare(0, sweep.size(), sweep) != 0 || head.size() > 1024)
+            throw InputError(path + ": not a journal of refract sweep (its first line is no sweep's fingerprint); "
+                                    "delete it or choose another -o");
+        throw InputError(path + ": the journal of an interrupted sweep with other parameters (" + head.substr(2) +
                          "); run that sweep again to finish it, or delete the journal");
+    }
     for (size_t b = pos + 1; b < text.size();) {
         const size_t e = text.find('\n', b);
         if (e == std::string::npos) break;  // a torn last line: the row is computed again
@@ -56,7 +60,7 @@ bool read_journal(const std::string& path, const std::string& fingerprint, std::
 
 }  // namespace
 
-Lines recover(const Sweep& sweep, const std::string& out) {
+Lines recover(const Sweep& sweep, const std::string& out, bool* found) {
     const std::string fp = fingerprint(sweep);
     const std::int64_t size = sweep.grid.size();
     Lines lines;
@@ -70,8 +74,9 @@ Lines recover(const Sweep& sweep, const std::string& out) {
         const std::string name = e.path().filename().string();
         if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
             name.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
-            read_journal(e.path().string(), fp, size, lines);
-            parts.push_back(e.path().string());
+            const std::string part = (fs::path(out).parent_path() / name).string();  // as OUT is written
+            read_journal(part, fp, size, lines);
+            parts.push_back(part);
             any = true;
         }
     }
@@ -83,11 +88,12 @@ Lines recover(const Sweep& sweep, const std::string& out) {
         }());
         for (const auto& p : parts) fs::remove(p, ec);
     }
+    if (found) *found = any;
     return lines;
 }
 
 JournalWriter::JournalWriter(const std::string& path, const std::string& fingerprint) : path_(path) {
-    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    fd_ = open_own_file(path, O_WRONLY | O_APPEND | O_CREAT, kJournal);  // no link followed, a regular file
     if (fd_ < 0) throw InputError(path + ": cannot open the sweep's journal (" + std::strerror(errno) + ")");
     if (::lseek(fd_, 0, SEEK_END) == 0) append("# " + fingerprint);
 }
@@ -107,6 +113,11 @@ void JournalWriter::append(const std::string& line) {
     }
 }
 
+void remove_new_journal(const std::string& path) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) ::unlink(path.c_str());
+}
+
 std::string csv_text(const Lines& lines) {
     std::string s = csv_header() + "\n";
     for (const auto& [i, line] : lines) s += line + "\n";
@@ -122,28 +133,45 @@ void finish(const Sweep& sweep, const std::string& out, const Lines& lines) {
     fs::remove(journal_path(out), ec);
 }
 
+void check_output(const std::string& out) {
+    const fs::path dir = fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw InputError(out + ": the directory " + dir.string() + " does not exist");
+    if (fs::is_directory(out, ec)) throw InputError(out + ": is a directory, not a CSV file");
+    if (::access(dir.c_str(), W_OK) != 0) throw InputError(out + ": the directory " + dir.string() + " is not writable");
+}
+
 FileRunStats run_to_file(const Sweep& sweep, const std::string& out, int threads,
                          const std::function<void(std::int64_t, std::int64_t)>& progress) {
+    check_output(out);
     FileRunStats st;
     st.total = sweep.grid.size();
-    Lines lines = recover(sweep, out);
+    bool resuming = false;
+    Lines lines = recover(sweep, out, &resuming);
     st.resumed = static_cast<std::int64_t>(lines.size());
     std::vector<std::int64_t> pending;
     for (std::int64_t i = 0; i < st.total; ++i)
         if (!lines.count(i)) pending.push_back(i);
-    JournalWriter journal(journal_path(out), fingerprint(sweep));
-    std::int64_t done = st.resumed;
-    const auto rows = run(sweep, pending, threads, [&](const Row& r) {
-        journal.append(csv_line(r));
-        ++done;
-        if (progress) progress(done, st.total);
-    });
-    for (const Row& r : rows) {
-        lines[r.index] = csv_line(r);
-        st.impossible += !r.possible;
+    try {
+        JournalWriter journal(journal_path(out), fingerprint(sweep));
+        std::int64_t done = st.resumed;
+        const auto rows = run(sweep, pending, threads, [&](const Row& r) {
+            journal.append(csv_line(r));
+            ++done;
+            if (progress) progress(done, st.total);
+        });
+        for (const Row& r : rows) {
+            lines[r.index] = csv_line(r);
+            st.impossible += !r.possible;
+        }
+        st.computed = static_cast<std::int64_t>(rows.size());
+        finish(sweep, out, lines);
+    } catch (const InputError&) {
+        // Refused after it started (a disk full, an output that became a directory): the
+        // journal this run began goes too; one resumed from an earlier run stays.
+        if (!resuming) remove_new_journal(journal_path(out));
+        throw;
     }
-    st.computed = static_cast<std::int64_t>(rows.size());
-    finish(sweep, out, lines);
     return st;
 }
 

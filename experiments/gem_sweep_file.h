@@ -22,8 +22,14 @@ std::string part_journal_path(const std::string& out, int rank);  // OUT.journal
 // Reads OUT.journal and any part journals an earlier (MPI) run left, checks their
 // fingerprint (InputError naming the journal when it belongs to another sweep), drops a
 // torn last line, rewrites OUT.journal (atomically) with every finished row and removes
-// the parts. Returns the finished rows.
-Lines recover(const Sweep& sweep, const std::string& out);
+// the parts. Returns the finished rows; `*found` (when given) tells whether there was
+// any journal. Journals are opened without following links and must be regular files
+// (InputError naming the journal otherwise, quoting none of it).
+Lines recover(const Sweep& sweep, const std::string& out, bool* found = nullptr);
+
+// Removes the journal `path` a run began when it is refused after starting (a regular
+// file only: nothing else at that name is touched).
+void remove_new_journal(const std::string& path);
 
 // Appends rows to a journal, creating it with the fingerprint line when it is new.
 class JournalWriter {
@@ -49,7 +55,11 @@ std::string csv_text(const Lines& lines);
 // otherwise), then removes the journal.
 void finish(const Sweep& sweep, const std::string& out, const Lines& lines);
 
-// The whole sweep in one process: recover, evaluate the missing cuts on `threads`
+// Refuses (InputError naming `out`), before any work, an output that cannot be written: a
+// missing or unwritable directory, a directory at its name.
+void check_output(const std::string& out);
+
+// The whole sweep in one process (check_output first): recover, evaluate the missing cuts on `threads`
 // threads (journalled), finish. `progress(done, total)` after each row, if given.
 struct FileRunStats {
     std::int64_t total = 0, resumed = 0, computed = 0, impossible = 0;

@@ -12,6 +12,7 @@
 #include <signal.h>
 #include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -26,11 +27,6 @@ namespace refract::experiments {
 namespace fs = std::filesystem;
 
 namespace {
-
-// A name beside `path` no other writer uses: pid and a process-wide counter.
-std::string temp_name(const std::string& path) {
-    return path + ".refract-tmp-" + random_token();  // unpredictable: no planted link to follow
-}
 
 std::string gnuplot_quote(const std::string& s) {  // single-quoted gnuplot string
     std::string out = "'";
@@ -150,60 +146,51 @@ void gnuplot_figure(const std::string& dir, const std::string& name, const std::
         throw std::runtime_error("gnuplot not found on PATH: install it (Debian: apt-get install gnuplot-nox) to draw " +
                                  base.string() + ".png/.pdf; the CSV files and " + name + ".gp are written");
 
-    const std::string tmp_base = fs::path(temp_name(name)).filename().string();
-    const std::string log = temp_name(base.string()) + ".log";
-    const std::string setup = "cd " + gnuplot_quote(dir) + "; outbase=" + gnuplot_quote(tmp_base);
+    // gnuplot writes the figures and its log into a private directory beside them
+    // (geometry/atomic_file.h PrivateDir), reached through /proc/self/fd/N, a descriptor it
+    // inherits: no name in the output directory is followed. They are renamed into place
+    // from there.
+    const PrivateDir priv(base.string());
+    const int inherited = ::fcntl(priv.fd(), F_DUPFD, 3);  // without FD_CLOEXEC: gnuplot inherits it
+    if (inherited < 0) throw std::runtime_error(base.string() + ": cannot pass a directory to gnuplot: " + std::strerror(errno));
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{inherited};
+    const bool proc = ::access("/proc/self/fd", X_OK) == 0;
+    const std::string via = proc ? "/proc/self/fd/" + std::to_string(inherited) : priv.path();
+    const std::string setup = "cd " + gnuplot_quote(dir) + "; outbase=" + gnuplot_quote(via + "/" + name);
     const std::string script = name + ".gp";
-    std::error_code ec;
-    auto cleanup = [&] {
-        fs::remove(log, ec);
-        fs::remove(fs::path(dir) / (tmp_base + ".png"), ec);
-        fs::remove(fs::path(dir) / (tmp_base + ".pdf"), ec);
-    };
     // The one subprocess runner (validation/process.h): gnuplot that hangs is killed.
     validation::ProcessOptions popt;
-    popt.stdout_path = log;
+    popt.stdout_path = via + "/gnuplot.log";
     popt.timeout_seconds = time_limit_s;
     validation::ProcessResult run;
     try {
         run = validation::run_process({"gnuplot", "-e", setup, script}, popt);
     } catch (const InputError& e) {
-        cleanup();
         throw std::runtime_error("cannot start gnuplot for " + base.string() + ".gp: " + e.what());
     }
-    const bool timed_out = run.timed_out;
-    if (run.exited && run.status == 127) {  // the child could not execute gnuplot
-        cleanup();
+    if (run.exited && run.status == 127)  // the child could not execute gnuplot
         throw std::runtime_error("cannot start gnuplot for " + base.string() + ".gp");
-    }
     std::string log_text;
-    {
-        std::ifstream in(log);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        log_text = ss.str();
+    try {
+        log_text = read_own_file("gnuplot.log", "gnuplot's log", priv.fd());
+    } catch (const InputError&) {  // not what gnuplot wrote: not quoted
     }
-    if (timed_out) {
-        cleanup();
+    if (run.timed_out)
         throw std::runtime_error("gnuplot " + base.string() + ".gp: killed after " + fmt(time_limit_s, 3) + " s");
-    }
-    if (!run.ok()) {
-        cleanup();
-        throw std::runtime_error("gnuplot " + base.string() + ".gp failed: " + last_line(log_text));
-    }
+    if (!run.ok()) throw std::runtime_error("gnuplot " + base.string() + ".gp failed: " + last_line(log_text));
     for (const char* ext : {".png", ".pdf"}) {
-        const fs::path from = fs::path(dir) / (tmp_base + ext);
-        if (!fs::exists(from)) {
-            cleanup();
+        struct stat st {};
+        if (::fstatat(priv.fd(), (name + ext).c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0)
             throw std::runtime_error("gnuplot " + base.string() + ".gp wrote no " + ext + " file: " + last_line(log_text));
-        }
-        fs::rename(from, base.string() + ext, ec);
-        if (ec) {
-            cleanup();
-            throw std::runtime_error(base.string() + ext + ": cannot rename the temporary figure into place");
+        try {
+            priv.move_out(name + ext, base.filename().string() + ext, base.string() + ext);
+        } catch (const InputError& e) {
+            throw std::runtime_error(std::string(e.what()) + " (cannot rename the figure into place)");
         }
     }
-    fs::remove(log, ec);
 }
 
 void image_grid_figure(const std::string& dir, const std::string& name, int rows, int cols,

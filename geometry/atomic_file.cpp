@@ -1,52 +1,41 @@
 #include <refract/geometry/atomic_file.h>
 
-#include <array>
-#include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <random>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <refract/geometry/error.h>
+#include <refract/geometry/signal_cleanup.h>
 
 namespace refract {
 
+// What the signal handler needs to remove a private directory: descriptors and its name
+// only (unlinkat, fstatat, getdents: async-signal-safe), no path a rename could redirect.
+struct PrivateDir::Live {
+    int parent = -1, dir = -1;
+    char name[64] = {};
+};
+
 namespace {
 
-// Live temporaries, for the signal handler (which may only use async-signal-safe calls:
-// it reads these fixed buffers and calls unlink).
-constexpr int kSlots = 256;
-constexpr size_t kPathMax = 4096;
-std::array<std::atomic<bool>, kSlots> g_used{};
-std::array<std::array<char, kPathMax>, kSlots> g_paths{};
+bool same_file(const struct stat& a, const struct stat& b) { return a.st_dev == b.st_dev && a.st_ino == b.st_ino; }
 
-int register_path(const std::string& p) {
-    if (p.size() >= kPathMax) return -1;
-    for (int k = 0; k < kSlots; ++k) {
-        bool expected = false;
-        if (g_used[static_cast<size_t>(k)].compare_exchange_strong(expected, true)) {
-            std::memcpy(g_paths[static_cast<size_t>(k)].data(), p.c_str(), p.size() + 1);
-            return k;
-        }
-    }
-    return -1;  // registry full: the temporary is still removed on every other path
+// Removes the private directory `name` in `parent` when it is still the one open as `dir`
+// (another user may have renamed it and put something else under its name).
+void remove_private_dir(int parent, int dir, const char* name) {
+    struct stat mine {}, there {};
+    if (::fstat(dir, &mine) == 0 && ::fstatat(parent, name, &there, AT_SYMLINK_NOFOLLOW) == 0 &&
+        same_file(mine, there))
+        ::unlinkat(parent, name, AT_REMOVEDIR);
 }
 
-void unregister(int slot) {
-    if (slot >= 0) g_used[static_cast<size_t>(slot)].store(false);
-}
-
-extern "C" void remove_temporaries(int sig) {
-    for (int k = 0; k < kSlots; ++k)
-        if (g_used[static_cast<size_t>(k)].load()) ::unlink(g_paths[static_cast<size_t>(k)].data());
-    std::signal(sig, SIG_DFL);
-    std::raise(sig);
-}
+std::string error_text(int err) { return std::strerror(err); }
 
 }  // namespace
 
@@ -58,68 +47,153 @@ std::string random_token() {
     return buf;
 }
 
-TempFile::TempFile(const std::string& target, bool keep_extension) : target_(target) {
+void PrivateDir::on_signal(void* p) {
+    const Live& l = *static_cast<const Live*>(p);
+    remove_entries_now(l.dir);
+    remove_private_dir(l.parent, l.dir, l.name);
+}
+
+PrivateDir::PrivateDir(const std::string& target) : live_(std::make_unique<Live>()) {
     namespace fs = std::filesystem;
-    const fs::path t(target);
-    const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
-    const std::string ext = keep_extension ? t.extension().string() : std::string();
-    for (int attempt = 0; attempt < 16; ++attempt) {
-        const std::string p = (dir / (".refract-tmp-" + random_token() + ext)).string();
-        const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-        if (fd >= 0) {
-            ::close(fd);
-            path_ = p;
-            slot_ = register_path(p);
-            return;
+    const fs::path dir = fs::path(target).parent_path().empty() ? fs::path(".") : fs::path(target).parent_path();
+    parent_ = ::open(dir.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (parent_ < 0) throw InputError(target + ": cannot create a file in " + dir.string() + ": " + error_text(errno));
+    for (int attempt = 0; attempt < 16 && dir_ < 0; ++attempt) {
+        const std::string name = ".refract-tmp-" + random_token();
+        if (::mkdirat(parent_, name.c_str(), 0700) != 0) {
+            if (errno == EEXIST) continue;
+            const int err = errno;
+            ::close(parent_);
+            throw InputError(target + ": cannot create a file in " + dir.string() + ": " + error_text(err));
         }
-        if (errno != EEXIST)
-            throw InputError(target + ": cannot create a file in " + dir.string() + ": " + std::strerror(errno));
+        // Opened without following a link and checked to be ours: between mkdirat and
+        // openat another user may have renamed it and put another in its place.
+        const int d = ::openat(parent_, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        struct stat st {};
+        if (d >= 0 && ::fstat(d, &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == ::geteuid() &&
+            ::fchmod(d, 0700) == 0) {  // 0700 whatever the umask or a default ACL gave it
+            dir_ = d;
+            name_ = name;
+        } else if (d >= 0) {
+            ::close(d);
+        }
     }
-    throw InputError(target + ": cannot create a temporary file in " + dir.string());
+    if (dir_ < 0) {
+        ::close(parent_);
+        throw InputError(target + ": cannot create a file in " + dir.string() + ": no private temporary directory");
+    }
+    path_ = (dir / name_).string();
+    live_->parent = parent_;
+    live_->dir = dir_;
+    std::memcpy(live_->name, name_.c_str(), name_.size() + 1);
+    slot_ = add_signal_cleanup(on_signal, live_.get());
+}
+
+PrivateDir::~PrivateDir() {
+    remove_signal_cleanup(slot_);
+    remove_entries_now(dir_);
+    remove_private_dir(parent_, dir_, name_.c_str());
+    ::close(dir_);
+    ::close(parent_);
+}
+
+void PrivateDir::move_out(const std::string& name, const std::string& target_name, const std::string& target) const {
+    struct stat st {};
+    if (::fstatat(dir_, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode))
+        throw InputError(target + ": the temporary " + path_ + "/" + name + " is missing or not a regular file; not written");
+    if (::renameat(dir_, name.c_str(), parent_, target_name.c_str()) != 0)
+        throw InputError(target + ": cannot write: " + error_text(errno));
+}
+
+TempFile::TempFile(const std::string& target) : target_(target) {
+    file_name_ = std::filesystem::path(target).filename().string();
+    if (file_name_.empty() || file_name_ == "." || file_name_ == "..") throw InputError(target + ": not a file name");
+    dir_ = std::make_unique<PrivateDir>(target);
+    path_ = dir_->path() + "/" + file_name_;
+    fd_ = ::openat(dir_->fd(), file_name_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+        const int err = errno;
+        const std::string where = std::filesystem::path(dir_->path()).parent_path().string();
+        dir_.reset();
+        throw InputError(target + ": cannot create a file in " + where + ": " + error_text(err));
+    }
 }
 
 TempFile::~TempFile() {
-    if (!committed_ && !path_.empty()) ::unlink(path_.c_str());
-    unregister(slot_);
-}
+    if (fd_ >= 0) ::close(fd_);
+}  // the private directory goes with what it holds
 
 void TempFile::commit() {
-    if (::rename(path_.c_str(), target_.c_str()) != 0) {
-        const int err = errno;
-        ::unlink(path_.c_str());
-        committed_ = true;  // nothing left to remove
-        throw InputError(target_ + ": cannot write: " + std::strerror(err));
+    if (!dir_) throw InputError(target_ + ": cannot write: the temporary is gone");
+    std::unique_ptr<PrivateDir> dir = std::move(dir_);  // removed at the end of this call, whatever happens
+    const auto fail = [&](const std::string& why) { throw InputError(target_ + ": " + why); };
+    struct stat written {}, named {};
+    if (::fstat(fd_, &written) != 0) fail("cannot write: " + error_text(errno));
+    const int closed = ::close(fd_);  // a deferred write error (NFS, quota) shows here
+    fd_ = -1;
+    if (closed != 0) fail("cannot write: " + error_text(errno));
+    if (::fstatat(dir->fd(), file_name_.c_str(), &named, AT_SYMLINK_NOFOLLOW) != 0 || !same_file(written, named))
+        fail("the temporary " + path_ + " was replaced during the write; not written");
+    if (::renameat(dir->fd(), file_name_.c_str(), dir->parent_, file_name_.c_str()) != 0)
+        fail("cannot write: " + error_text(errno));
+    // The name renamed may have been swapped between the check and the rename (only by this
+    // user: the directory is private): what now stands at the target must be the file written.
+    struct stat placed {};
+    if (::fstatat(dir->parent_, file_name_.c_str(), &placed, AT_SYMLINK_NOFOLLOW) == 0 && !same_file(written, placed)) {
+        ::unlinkat(dir->parent_, file_name_.c_str(), 0);
+        fail("the temporary " + path_ + " was replaced during the write; not written");
     }
-    committed_ = true;
 }
 
 void write_file_atomic(const std::string& path, const std::string& bytes) {
     TempFile tmp(path);
-    const int fd = ::open(tmp.path().c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
-    if (fd < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
     size_t done = 0;
     while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        const ssize_t n = ::write(tmp.fd(), bytes.data() + done, bytes.size() - done);
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            const int err = errno;
-            ::close(fd);
-            throw InputError(path + ": cannot write: " + std::strerror(err));  // disk full: ENOSPC
-        }
+        if (n <= 0) throw InputError(path + ": cannot write: " + error_text(n < 0 ? errno : ENOSPC));  // disk full
         done += static_cast<size_t>(n);
     }
-    if (::close(fd) != 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
     tmp.commit();
 }
 
-void install_temp_cleanup() {
-    static std::atomic<bool> done{false};
-    if (done.exchange(true)) return;
-    struct sigaction sa {};
-    sa.sa_handler = remove_temporaries;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+int open_own_file(const std::string& path, int flags, const std::string& what, int at) {
+    const int fd = ::openat(at, path.c_str(), flags | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const int err = errno;
+        if (err == ENOENT) return -1;
+        if (err == ELOOP) throw InputError(path + ": " + what + " is a symbolic link, not a file refract wrote; refused");
+        throw InputError(path + ": cannot open " + what + ": " + error_text(err));
+    }
+    struct stat st {};
+    const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    if (!regular || st.st_nlink != 1) {
+        ::close(fd);
+        throw InputError(path + ": " + what + (regular ? " has other names (hard links)" : " is not a regular file") +
+                         ", not a file refract wrote; refused");
+    }
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    return fd;
+}
+
+std::string read_own_file(const std::string& path, const std::string& what, int at) {
+    std::string text;
+    const int fd = open_own_file(path, O_RDONLY, what, at);
+    if (fd < 0) return text;
+    char buf[65536];
+    for (;;) {
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int err = errno;
+            ::close(fd);
+            throw InputError(path + ": cannot read " + what + ": " + error_text(err));
+        }
+        if (n == 0) break;
+        text.append(buf, static_cast<size_t>(n));
+    }
+    ::close(fd);
+    return text;
 }
 
 }  // namespace refract

@@ -55,7 +55,7 @@ TEST_CASE("Atomic write: errors name the path and leave no temporary — an unco
     CHECK_THROWS_WITH(write_file_atomic((d / "adir").string(), "x"), Catch::Contains("adir"));
     CHECK(temporaries(d) == 0);
     {
-        TempFile t((d / "y.exr").string(), true);
+        TempFile t((d / "y.exr").string());
         CHECK(fs::exists(t.path()));
         CHECK(fs::path(t.path()).extension() == ".exr");
         CHECK(temporaries(d) == 1);

@@ -47,8 +47,8 @@ Image clamp01(const Image& img) {
 void write_heatmap(const std::string& path, const Image& a, const Image& b) {
     same_size(a, b);
     const ImageIoModule& io = image_io();
-    TempFile tmp(path, true);  // the extension picks the writer
-    throw_if_failed(io.heatmap(a.rgb.data(), b.rgb.data(), a.width, a.height, tmp.path()), path);
+    TempFile tmp(path);  // written through its descriptor; the extension of `path` picks the writer
+    throw_if_failed(io.heatmap(a.rgb.data(), b.rgb.data(), a.width, a.height, tmp.fd(), path), path);
     tmp.commit();
 }
 

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include <refract/geometry/error.h>
+#include <refract/geometry/signal_cleanup.h>
 #include <refract/validation/files.h>
 #include <refract/validation/process.h>
 
@@ -40,7 +42,8 @@ std::string find_povray(const std::string& executable) {
 
 namespace {
 
-// A temporary directory removed with everything in it when the scope ends.
+// A temporary directory removed with everything in it when the scope ends, and on
+// SIGINT/SIGTERM (geometry/signal_cleanup.h: after POV-Ray, registered later, is killed).
 class TempDir {
 public:
     TempDir() {
@@ -49,8 +52,10 @@ public:
         buf.push_back('\0');
         if (!::mkdtemp(buf.data())) throw PovrayError(std::string("cannot create a temporary directory: ") + std::strerror(errno));
         path_ = buf.data();
+        on_signal_ = std::make_unique<TreeOnSignal>(path_.c_str());
     }
     ~TempDir() {
+        on_signal_.reset();
         std::error_code ec;
         fs::remove_all(path_, ec);
     }
@@ -60,6 +65,7 @@ public:
 
 private:
     fs::path path_;
+    std::unique_ptr<TreeOnSignal> on_signal_;
 };
 
 std::string tail(const std::string& text, size_t lines) {

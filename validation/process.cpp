@@ -2,6 +2,8 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
+#include <optional>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
@@ -11,6 +13,7 @@
 #include <unistd.h>
 
 #include <refract/geometry/error.h>
+#include <refract/geometry/signal_cleanup.h>
 
 extern char** environ;
 
@@ -20,6 +23,27 @@ std::string ProcessResult::why() const {
     if (timed_out) return "timed out after " + std::to_string(static_cast<long>(seconds)) + " s";
     return exited ? "exit code " + std::to_string(status) : "signal " + std::to_string(status);
 }
+
+namespace {
+
+// On SIGINT/SIGTERM (geometry/signal_cleanup.h): the child's process group is killed and
+// the child reaped, so that no program refract started outlives it.
+void kill_child(void* p) {
+    const pid_t pid = static_cast<pid_t>(reinterpret_cast<std::intptr_t>(p));
+    ::kill(-pid, SIGKILL);
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+}
+
+// The child's entry in the signal cleanups, removed once it is reaped.
+struct ChildOnSignal {
+    int handle = -1;
+    ~ChildOnSignal() { remove_signal_cleanup(handle); }
+};
+
+}  // namespace
 
 ProcessResult run_process(const std::vector<std::string>& args, const ProcessOptions& opt) {
     if (args.empty()) throw InputError("run_process: no program");
@@ -39,9 +63,13 @@ ProcessResult run_process(const std::vector<std::string>& args, const ProcessOpt
     rusage before{};
     getrusage(RUSAGE_CHILDREN, &before);
     const auto t0 = std::chrono::steady_clock::now();
+    ChildOnSignal on_signal;
+    // SIGINT and SIGTERM wait (in this thread) until the child is registered for them.
+    std::optional<SignalsHeld> held(std::in_place);
     const pid_t pid = ::fork();
     if (pid < 0) throw InputError("cannot start " + args[0] + ": " + std::strerror(errno));
     if (pid == 0) {
+        held->in_child();  // the default actions and the signal mask it had
         ::setpgid(0, 0);  // its own process group, so a time-out kills it whole
         if (!opt.dir.empty() && ::chdir(opt.dir.c_str()) != 0) ::_exit(126);
         const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
@@ -69,6 +97,8 @@ ProcessResult run_process(const std::vector<std::string>& args, const ProcessOpt
         ::_exit(127);
     }
     ::setpgid(pid, pid);
+    on_signal.handle = add_signal_cleanup(kill_child, reinterpret_cast<void*>(static_cast<std::intptr_t>(pid)));
+    held.reset();
     ProcessResult r;
     int status = 0;
     while (true) {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -12,6 +13,7 @@
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/geometry/error.h>
+#include <refract/geometry/signal_cleanup.h>
 #include <refract/validation/files.h>
 #include <refract/validation/pov_export.h>
 
@@ -194,6 +196,10 @@ RandomCase run_one(std::uint64_t seed, const RandomOptions& opt) {
     rc.diff = c.diff;
     if (c.outcome == Comparison::Outcome::Fail) {
         const fs::path dir = fs::path(opt.out_dir) / ("seed-" + std::to_string(seed));
+        // Removed on SIGINT/SIGTERM while it is being written, when this run makes it.
+        std::error_code ec;
+        std::unique_ptr<TreeOnSignal> partial;
+        if (!fs::exists(fs::symlink_status(dir, ec))) partial = std::make_unique<TreeOnSignal>(dir.c_str());
         fs::create_directories(dir);
         rc.dir = dir.string();
         write_text_file((dir / "scene.json").string(), scene.dump(2) + "\n");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <refract/core/scene_json.h>
 #include <refract/geometry/error.h>
 #include <refract/geometry/input_file.h>
+#include <refract/geometry/signal_cleanup.h>
 #include <refract/validation/analytic.h>
 #include <refract/validation/compare.h>
 #include <refract/validation/files.h>
@@ -214,9 +216,14 @@ CaseResult run_case_inner(const std::string& name, const SuiteOptions& opt, std:
     const fs::path case_dir = out_dir / name;
     Scene scene;
     Tolerances tol;
+    // A case directory this run makes is removed on SIGINT/SIGTERM until the case is done
+    // (geometry/signal_cleanup.h): an interrupted case leaves no partial directory.
+    std::unique_ptr<TreeOnSignal> partial;
     try {
         scene = load_scene(scene_path.string());
         tol = load_tolerances(tol_path.string());
+        std::error_code ec;
+        if (!fs::exists(fs::symlink_status(case_dir, ec))) partial = std::make_unique<TreeOnSignal>(case_dir.c_str());
         fs::create_directories(case_dir);
     } catch (const std::exception& e) {
         add_skip(c, e.what());

@@ -1,9 +1,16 @@
 // The image module (core/image_io.h): every use of OpenImageIO in refract, built as a
 // shared module that core loads on the first image read or write. No exception leaves it.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <exception>
+#include <memory>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -35,6 +42,68 @@ OIIO::TypeDesc type_of(PixelType t) {
     }
 }
 
+// Writing through a descriptor the caller opened (a TempFile's): OpenImageIO reads and
+// writes at offsets of it and never opens a file by name. close() leaves it to the caller.
+class FdProxy final : public OIIO::Filesystem::IOProxy {
+public:
+    FdProxy(int fd, const std::string& name) : IOProxy(name, Write), fd_(fd) {}
+    const char* proxytype() const override { return "refract-fd"; }
+    void close() override { m_mode = Closed; }
+    size_t write(const void* buf, size_t size) override {
+        const size_t n = pwrite(buf, size, m_pos);
+        m_pos += static_cast<int64_t>(n);
+        return n;
+    }
+    size_t read(void* buf, size_t size) override {
+        const size_t n = pread(buf, size, m_pos);
+        m_pos += static_cast<int64_t>(n);
+        return n;
+    }
+    size_t pwrite(const void* buf, size_t size, int64_t offset) override {
+        size_t done = 0;
+        while (done < size) {
+            const ssize_t n = ::pwrite(fd_, static_cast<const char*>(buf) + done, size - done, offset + done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                error(std::strerror(n < 0 ? errno : ENOSPC));
+                break;
+            }
+            done += static_cast<size_t>(n);
+        }
+        return done;
+    }
+    size_t pread(void* buf, size_t size, int64_t offset) override {
+        size_t done = 0;
+        while (done < size) {
+            const ssize_t n = ::pread(fd_, static_cast<char*>(buf) + done, size - done, offset + done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;
+            done += static_cast<size_t>(n);
+        }
+        return done;
+    }
+    size_t size() const override {
+        struct stat st {};
+        return ::fstat(fd_, &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
+    }
+
+private:
+    int fd_;
+};
+
+// The writer for the extension of `name`, set to write through `proxy`; an error status
+// when there is none or it cannot write through a proxy. (OpenImageIO 2.4.7's TIFF writer
+// through a proxy writes a broken file once the header needs an Exif directory, as an
+// oiio:ColorSpace does: refract's TIFFs are linear float and carry none.)
+IoStatus writer_for(const std::string& name, OIIO::Filesystem::IOProxy& proxy, std::unique_ptr<OIIO::ImageOutput>& out) {
+    out = OIIO::ImageOutput::create(name);
+    if (!out) return {"no image writer for this extension"};
+    if (!out->supports("ioproxy"))
+        return {std::string("the ") + out->format_name() + " writer of this OpenImageIO cannot write to an open file"};
+    out->set_ioproxy(&proxy);
+    return {};
+}
+
 bool can_write(const std::string& path) {
     try {
         return OIIO::ImageOutput::create(path) != nullptr;
@@ -43,16 +112,17 @@ bool can_write(const std::string& path) {
     }
 }
 
-IoStatus write(const std::string& file, int width, int height, int nchannels, PixelType type, const void* data,
-               const std::vector<std::string>& names, const std::string& colorspace,
+IoStatus write(int fd, const std::string& file, int width, int height, int nchannels, PixelType type,
+               const void* data, const std::vector<std::string>& names, const std::string& colorspace,
                const std::vector<std::pair<std::string, std::string>>& attributes) {
     return guarded([&]() -> IoStatus {
         OIIO::ImageSpec spec(width, height, nchannels, type_of(type));
         if (!names.empty()) spec.channelnames = names;
         if (!colorspace.empty()) spec.attribute("oiio:ColorSpace", colorspace);
         for (const auto& [name, value] : attributes) spec.attribute(name, value);
-        auto out = OIIO::ImageOutput::create(file);
-        if (!out) return {"no image writer for this extension"};
+        FdProxy proxy(fd, file);
+        std::unique_ptr<OIIO::ImageOutput> out;
+        if (IoStatus s = writer_for(file, proxy, out); !s.ok()) return s;
         if (!(out->open(file, spec) && out->write_image(spec.format, data) && out->close()))
             return {"cannot write image: " + out->geterror()};
         return {};
@@ -111,7 +181,7 @@ IoStatus clamp01(const double* rgb, int width, int height, double* out) {
     });
 }
 
-IoStatus heatmap(const double* a, const double* b, int width, int height, const std::string& file) {
+IoStatus heatmap(const double* a, const double* b, int width, int height, int fd, const std::string& file) {
     return guarded([&]() -> IoStatus {
         OIIO::ImageBuf diff = IBA::maxchan(IBA::absdiff(to_buf(a, width, height), to_buf(b, width, height)));
         // Log scale (OpenImageIO has no log operator): 1e-6 -> 0, 1e-1 -> 1.
@@ -121,8 +191,13 @@ IoStatus heatmap(const double* a, const double* b, int width, int height, const 
         }
         OIIO::ImageBuf heat = IBA::color_map(diff, 0, "inferno");
         if (heat.has_error()) return {"cannot build heat map: " + heat.geterror()};
-        heat.set_write_format(OIIO::TypeDesc::UINT8);
-        if (!heat.write(file)) return {"cannot write heat map: " + heat.geterror()};
+        FdProxy proxy(fd, file);
+        std::unique_ptr<OIIO::ImageOutput> out;
+        if (IoStatus s = writer_for(file, proxy, out); !s.ok()) return s;
+        OIIO::ImageSpec spec = heat.spec();
+        spec.set_format(OIIO::TypeDesc::UINT8);
+        if (!(out->open(file, spec) && heat.write(out.get()) && out->close()))
+            return {"cannot write heat map: " + out->geterror() + heat.geterror()};
         return {};
     });
 }
