@@ -39,6 +39,7 @@
 #include <deque>
 #include <cstring>
 #include <initializer_list>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -207,7 +208,12 @@ public:
     using Packets = FifoList<Packet>;
 
     RayTreeWalkerT(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
-        : tracer_(tracer), limits_(limits), stats_(stats) {}
+        : tracer_(tracer), limits_(limits), stats_(stats) {
+        // The interactions carry natural light's factors or Mueller matrices by the scene's
+        // model (polarisation_model()): the payload must be that model's.
+        if (tracer.exact() == std::is_same_v<P, NaturalLight>)
+            throw std::logic_error("ray-tree walk: the payload is not the scene's polarisation model");
+    }
 
     const SceneTracer& tracer() const { return tracer_; }
     RenderStats& stats() { return stats_; }

@@ -6,8 +6,10 @@
 #include <optional>
 #include <type_traits>
 #include <tuple>
+#include <vector>
 
 #include <refract/core/emitters.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/optics.h>
 #include <refract/core/ray_tree.h>
 #include <refract/core/spectrum/wavelengths.h>
@@ -31,14 +33,14 @@ public:
     void background(const Entry& e) {
         TraceSegment& s = start(e);
         s.event = "background";
-        s.light = s.weight.cwiseProduct(tracer_.background(e.ray.dir));
+        s.light = light_of(e, s, tracer_.background(e.ray.dir));
         rec_.radiance += s.light;
     }
 
     void leaf(const Entry& e, const SurfaceHit& h) {
         TraceSegment& s = rec_.segments[static_cast<size_t>(current_)];
         s.event = describe(*h.material, Interaction{}, h, e.ray, 0.0).event;
-        s.light = s.weight.cwiseProduct(tracer_.local_light(h, stats_));
+        s.light = light_of(e, s, tracer_.local_light(h, stats_));
         rec_.radiance += s.light;
     }
 
@@ -81,6 +83,13 @@ public:
 private:
     using Key = std::tuple<double, double, double>;
     static Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+    // What the segment brings to the root: the light L at its end as the walk sums it
+    // (under exact polarisation the camera's walk adds the S0 row of C·(L, 0, 0, 0)).
+    Vec3 light_of(const Entry& e, const TraceSegment& s, const Vec3& L) const {
+        if constexpr (std::is_same_v<P, EyeStokes>) return rgb_of(seen(e.pol, e.weight, L));
+        else return s.weight.cwiseProduct(L);
+    }
 
     TraceSegment& start(const Entry& e) {
         TraceSegment s;
@@ -125,9 +134,9 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
     rec.wavelength_nm = wavelength_nm;
     // A polarised trace needs the interfaces' Mueller matrices: the exact model.
     std::optional<Scene> exact;
-    if (polarisation && scene_in.settings.polarisation != PolarisationModel::Exact) {
+    if (polarisation && polarisation_model(scene_in) != PolarisationModel::Exact) {
         exact = scene_in;
-        exact->settings.polarisation = PolarisationModel::Exact;
+        exact->settings.requested_polarisation = PolarisationModel::Exact;
     }
     const Scene& scene = exact ? *exact : scene_in;
     SceneTracer tracer(scene);
@@ -143,9 +152,11 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
         RecordingEnds<P> ends(tracer, wavelength_nm, rec, stats);
         typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{Ray{ray.origin, dir}, Vec3(1, 1, 1)}};
         if constexpr (std::is_same_v<P, LightStokes>) list.front().pol = emitted(*polarisation, dir);
+        if constexpr (std::is_same_v<P, EyeStokes>) list.front().pol = camera_stokes(scene, list.front().ray);
         walker.walk(list, ends);
     };
     if (polarisation) walk(LightStokes{});
+    else if (tracer.exact()) walk(EyeStokes{});
     else walk(NaturalLight{});
     return rec;
 }

@@ -15,7 +15,10 @@ struct TraceSegment {
     int parent = -1;     // the segment whose end this one starts from; −1: the primary ray
     int depth = 0, reflections = 0, transmissions = 0;
     Ray ray;
-    Vec3 weight{1, 1, 1};  // cumulative attenuation along the segment (after its absorption)
+    // Cumulative attenuation along the segment (after its absorption); under exact
+    // polarisation that of unpolarised light arriving along it (the colour weight times the
+    // first element of its Mueller matrix to the camera).
+    Vec3 weight{1, 1, 1};
     // What ends it: "background", or at a hit "diffuse", "emissive", "mirror",
     // "reflection and refraction", "reflection only" (the refracted branch too weak or
     // absent), "total internal reflection".
@@ -52,6 +55,8 @@ struct TraceRecord {
 // With `polarisation`: the ray is light of that state travelling along it (a linear
 // state's angle measured from its reference as for a light), walked with exact
 // polarisation whatever the scene's model, each segment carrying its Stokes vector.
+// Without: the camera's walk under the scene's model (polarisation_model()), so that a
+// pixel's record sums to its rendered value.
 TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm = 0,
                       const PolarisationState* polarisation = nullptr);
 

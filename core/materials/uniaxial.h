@@ -49,6 +49,7 @@ inline bool dispersive(const Uniaxial&) { return true; }
 inline double band_index(const Uniaxial& m, double nm, const CompatRules&) { return m.n_o(nm); }
 inline const spectrum::Absorption* absorption(const Uniaxial&) { return nullptr; }
 inline bool in_packets(const Uniaxial&) { return false; }
+inline bool carries_stokes(const Uniaxial&) { return true; }
 // Double refraction, or total internal reflection when no beam is transmitted.
 inline NodeRecord describe(const Uniaxial&, const Interaction& in, const SurfaceHit&, const Ray&, double) {
     int transmitted = 0;

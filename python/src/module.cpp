@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <refract/core/image.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/core/trace_record.h>
@@ -245,19 +246,34 @@ double check_wavelength(const py::handle& w) {
     return w.cast<double>();
 }
 
-// None or "natural": natural light; a dict in the scene file's form of a light's
-// "polarisation" (or its type alone, as a string): that state.
-std::optional<PolarisationState> check_polarisation(const py::handle& p) {
-    if (p.is_none()) return std::nullopt;
+// How a trace walks: None, the camera's walk under the scene's own model; "natural", the
+// same with natural light whatever that model; a dict in the scene file's form of a
+// light's "polarisation" (or its type alone, as a string): light of that state.
+struct TraceModel {
+    std::optional<PolarisationState> state;
+    bool natural = false;
+};
+TraceModel check_polarisation(const py::handle& p) {
+    if (p.is_none()) return {};
     if (py::isinstance<py::str>(p)) {
         const std::string t = p.cast<std::string>();
-        if (t == "natural") return std::nullopt;
-        return parse_polarisation_state(nlohmann::json{{"type", t}}, "trace");
+        if (t == "natural") return {std::nullopt, true};
+        return {parse_polarisation_state(nlohmann::json{{"type", t}}, "trace"), false};
     }
     if (!py::isinstance<py::dict>(p))
         throw InputError("trace: polarisation must be None, \"natural\", a type name or a dict such as "
                          "{\"type\": \"linear\", \"angle\": 30}");
-    return parse_polarisation_state(to_json(p.cast<py::dict>(), "", "trace"), "trace");
+    return {parse_polarisation_state(to_json(p.cast<py::dict>(), "", "trace"), "trace"), false};
+}
+
+// `trace(scene, state)` with the scene as the model asks: a copy with natural light for "natural".
+template <class F>
+TraceRecord traced(const Scene& s, const TraceModel& m, F&& trace) {
+    if (!m.natural || polarisation_model(s) == PolarisationModel::Natural)
+        return trace(s, m.state ? &*m.state : nullptr);
+    Scene natural = s;
+    natural.settings.requested_polarisation = PolarisationModel::Natural;
+    return trace(natural, nullptr);
 }
 
 }  // namespace
@@ -284,7 +300,7 @@ PYBIND11_MODULE(_refract, m) {
                                })
         .def_property_readonly("spectral", [](const Scene& s) { return s.settings.spectral.enabled; })
         .def_property_readonly("polarisation", [](const Scene& s) {
-            return s.settings.polarisation == PolarisationModel::Exact ? "exact" : "natural";
+            return polarisation_model(s) == PolarisationModel::Exact ? "exact" : "natural";
         })
         .def("__repr__", [](const Scene& s) {
             return "<refract.Scene " + s.source + " " + std::to_string(s.camera.width) + "x" +
@@ -318,16 +334,20 @@ PYBIND11_MODULE(_refract, m) {
              const py::handle& polarisation) {
               const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
               const double nm = check_wavelength(wavelength);
-              const std::optional<PolarisationState> pol = check_polarisation(polarisation);
-              return trace_result(without_gil([&] { return trace_ray(s, Ray{o, d}, nm, pol ? &*pol : nullptr); }));
+              const TraceModel pol = check_polarisation(polarisation);
+              return trace_result(without_gil([&] {
+                  return traced(s, pol, [&](const Scene& sc, const PolarisationState* p) { return trace_ray(sc, Ray{o, d}, nm, p); });
+              }));
           },
           py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none(),
           py::arg("polarisation") = py::none());
     m.def("trace_pixel",
           [](const Scene& s, int i, int j, const py::handle& wavelength, const py::handle& polarisation) {
               const double nm = check_wavelength(wavelength);
-              const std::optional<PolarisationState> pol = check_polarisation(polarisation);
-              return trace_result(without_gil([&] { return trace_pixel(s, i, j, nm, pol ? &*pol : nullptr); }));
+              const TraceModel pol = check_polarisation(polarisation);
+              return trace_result(without_gil([&] {
+                  return traced(s, pol, [&](const Scene& sc, const PolarisationState* p) { return trace_pixel(sc, i, j, nm, p); });
+              }));
           },
           py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none(),
           py::arg("polarisation") = py::none());

@@ -46,7 +46,9 @@ def test_each_node_carries_the_fresnel_terms_of_its_hit():
 
 
 def test_children_weights_are_the_parents_times_r_and_one_minus_r():
-    tree = refract.trace(lone_sphere(), [0, 0.4, -5], [0, 0, 1])
+    # Yasuda's eq. 7 at every node: the natural-light walk (the scene's own model, the
+    # physical mode's default, is exact polarisation, where a weight is C00 of a product).
+    tree = refract.trace(lone_sphere(), [0, 0.4, -5], [0, 0, 1], polarisation="natural")
     for node in tree[1:]:
         parent = tree[node["parent"]]
         R = parent["R"]
