@@ -58,6 +58,7 @@ public:
                 s.facet_label = c->labels[static_cast<size_t>(h.hit.facet)];
         s.entering = h.entering;
         hits_[key(h.hit.point)] = s.id;
+        hit_material_[static_cast<size_t>(s.id)] = h.material;
         const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h), false, e.wave, wavelength(e),
                                                 std::is_same_v<P, EyeStokes>);
         if (in.leaf) return false;  // leaf() names the event
@@ -107,7 +108,19 @@ private:
             s.stokes_x = e.pol.x;
             s.weight = e.weight * e.pol.S[0];
         }
+        if constexpr (std::is_same_v<P, EyeStokes>) s.weight = e.weight * throughput(e.pol);
+        s.wave = e.wave;
+        if (e.wave != biref::Wave::Isotropic && s.parent >= 0) {
+            // A crystal's wave starts at the crystal's own surface: the parent's hit.
+            const Material* m = hit_material_[static_cast<size_t>(s.parent)];
+            if (const auto* u = m ? m->as<material::Uniaxial>() : nullptr) {
+                const Vec3 k = biref::wave_vector_of_ray(u->medium(nm_), e.wave, e.ray.dir);
+                s.index = k.norm();
+                s.wave_normal = k / s.index;
+            }
+        }
         rec_.segments.push_back(s);
+        hit_material_.push_back(nullptr);
         return rec_.segments.back();
     }
 
@@ -116,6 +129,7 @@ private:
     TraceRecord& rec_;
     RenderStats& stats_;
     std::map<Key, int> hits_;
+    std::vector<const Material*> hit_material_;  // per segment, the material at its end
     int current_ = -1;
 };
 

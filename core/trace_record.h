@@ -1,7 +1,8 @@
 #pragma once
 // Path record: every segment of one ray's tree, walked by the one ray-tree walker with
-// the scene's threshold and limits (natural light), with what happened at its end: the
-// point, object and facet, the event, the cosines, Rs and Rp, the weight, the wavelength.
+// the scene's threshold, limits and polarisation model, with what happened at its end: the
+// point, object and facet, the event, the cosines, Rs and Rp, the weight, the wavelength;
+// inside a uniaxial crystal the wave (o or e) and its index.
 // `refract trace` writes it as JSON (docs/scene-format.md, "Tracing one ray").
 #include <string>
 #include <vector>
@@ -42,6 +43,13 @@ struct TraceSegment {
     bool polarised = false;
     Eigen::Vector4d stokes = Eigen::Vector4d::Zero();
     Vec3 stokes_x{0, 0, 0};
+    // Inside a uniaxial crystal: the wave the segment travels as (Ordinary, Extraordinary;
+    // Isotropic elsewhere), its refractive index there (n_o; for the e wave the index of its
+    // wave normal, biref::extraordinary_index) and its unit wave normal (the segment's
+    // direction is the ray's, which the e wave's walk-off turns away from it).
+    biref::Wave wave = biref::Wave::Isotropic;
+    double index = 0;
+    Vec3 wave_normal{0, 0, 0};
 };
 
 struct TraceRecord {

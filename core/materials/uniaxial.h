@@ -18,6 +18,7 @@ struct Uniaxial {
     // The medium at wavelength λ (nm); at the sodium D line when λ <= 0 (an RGB ray).
     double n_o(double lambda_nm) const { return ordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
     double n_e(double lambda_nm) const { return extraordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
+    biref::Medium medium(double lambda_nm) const { return {n_o(lambda_nm), n_e(lambda_nm), optic_axis}; }
 
     static constexpr const char* kType = "uniaxial";
     static Uniaxial read(const JsonReader& r, const std::string& file);

@@ -183,7 +183,8 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
 // Interned keys: one dict per node, built as fast as Python builds its own.
 struct NodeKeys {
     py::object id, parent, depth, reflections, transmissions, origin, direction, weight, event, hit, length, point,
-        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength, stokes, stokes_x;
+        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength, stokes, stokes_x,
+        wave, index, wave_normal;
     NodeKeys() {
         auto k = [](const char* s) { return py::reinterpret_steal<py::object>(PyUnicode_InternFromString(s)); };
         id = k("id"), parent = k("parent"), depth = k("depth"), reflections = k("reflections");
@@ -192,6 +193,7 @@ struct NodeKeys {
         object = k("object"), facet = k("facet"), facet_label = k("facet_label"), entering = k("entering");
         eta = k("eta"), cos_i = k("cos_i"), cos_t = k("cos_t"), Rs = k("Rs"), Rp = k("Rp"), R = k("R");
         light = k("light"), wavelength = k("wavelength"), stokes = k("stokes"), stokes_x = k("stokes_x");
+        wave = k("wave"), index = k("index"), wave_normal = k("wave_normal");
     }
 };
 
@@ -236,6 +238,10 @@ py::tuple trace_result(const TraceRecord& rec) {
         d[k.wavelength] = wl;
         d[k.stokes] = s.polarised ? py::object(py::make_tuple(s.stokes[0], s.stokes[1], s.stokes[2], s.stokes[3])) : none;
         d[k.stokes_x] = s.polarised ? py::object(tuple3(s.stokes_x)) : none;
+        const bool crystal = s.wave != biref::Wave::Isotropic;
+        d[k.wave] = crystal ? py::object(py::str(s.wave == biref::Wave::Ordinary ? "o" : "e")) : none;
+        d[k.index] = crystal && s.index > 0 ? py::object(py::float_(s.index)) : none;
+        d[k.wave_normal] = crystal && s.index > 0 ? py::object(tuple3(s.wave_normal)) : none;
         PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), d.release().ptr());
     }
     return py::make_tuple(nodes, tuple3(rec.radiance), wl);
