@@ -732,8 +732,9 @@ private:
         c.depth = static_cast<std::int16_t>(p.depth + 1);
         const Object* objects = tracer_.scene().objects.data();
         for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i)
-            c.from[i] = keep[static_cast<int>(i)] ? RayOrigin{static_cast<std::int32_t>(h.object[i] - objects), h.facet[i]}
-                                                  : RayOrigin{};
+            c.from[i] = keep[static_cast<int>(i)]
+                            ? RayOrigin{static_cast<std::int32_t>(h.object[i] - objects), h.facet[i], h.inverted[static_cast<int>(i)]}
+                            : RayOrigin{};
     }
 
     // The lanes m of packet p left the scene.
