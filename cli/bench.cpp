@@ -187,7 +187,7 @@ void diamond(const refract::experiments::ohtsuka1998::SceneParams& p, const Args
     const std::string sdl_csg = a.no_povray ? "" : validation::export_pov(pov);
     const std::string sdl_mesh = a.no_povray ? "" : validation::export_pov(pov_mesh);
     std::vector<std::string> names = {"refract compat, gem as 121 planes", "refract compat, gem as " +
-                                      std::to_string(triangles) + " triangles (Embree)",
+                                      std::to_string(triangles) + " triangles (POV-Ray's mesh2 test)",
                                       "refract physical, light + eye pass, 31 λ",
                                       "the same, every gem segment by the full plane loop"};
     if (!a.no_povray) {
