@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/polarisation_output.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
@@ -84,7 +85,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         // Every file the render writes, checked before the work too: the image, then the
         // sidecars its options and the scene ask for.
         std::vector<std::string> outputs{args->output};
-        if (scene.settings.polarisation == refract::PolarisationModel::Exact)
+        if (refract::polarisation_model(scene) == refract::PolarisationModel::Exact)
             for (const auto& p : refract::polarisation_paths(args->output)) outputs.push_back(p);
         if (args->spectral) outputs.push_back(sidecar(args->output, ".spectral.exr"));
         if (args->lost) outputs.push_back(sidecar(args->output, ".lost.exr"));

@@ -53,6 +53,13 @@ nlohmann::json to_json(const refract::TraceRecord& r, const std::string& scene) 
             j["stokes"] = {s.stokes[0], s.stokes[1], s.stokes[2], s.stokes[3]};
             j["stokes_x"] = vec(s.stokes_x);
         }
+        if (s.wave != refract::biref::Wave::Isotropic) {
+            j["wave"] = s.wave == refract::biref::Wave::Ordinary ? "o" : "e";
+            if (s.index > 0) {
+                j["index"] = s.index;
+                j["wave_normal"] = vec(s.wave_normal);
+            }
+        }
         segs.push_back(j);
     }
     json out = {{"scene", scene}, {"segments", segs}, {"radiance", vec(r.radiance)}};

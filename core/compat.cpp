@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <refract/core/hit_search.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/integrators/spectral.h>
 #include <refract/core/render_stats.h>
 #include <refract/core/scene.h>
@@ -160,7 +161,7 @@ void CompatRules::spectral_bands(const Scene& scene, SpectralContext& c) const {
 void CompatRules::validate(const Scene& scene) const {
     if (!pov_) return;
     const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
-    if (scene.settings.polarisation == PolarisationModel::Exact)
+    if (polarisation_model(scene) == PolarisationModel::Exact)
         throw InputError(f + ": /render/polarisation: \"exact\" has no POV-Ray counterpart (compat \"povray\" is natural light)");
     for (const Material& m : scene.materials)
         if (m.is<material::Uniaxial>())

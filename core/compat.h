@@ -45,6 +45,14 @@ public:
     // plane shades the floor.
     std::vector<const Object*> search_order(const Scene& scene) const;
 
+    // Whether a ray enters or leaves a dielectric mesh as the outward normal says
+    // (physical), or as POV-Ray's interior list says (POV-Ray: the list only changes at
+    // refractions, so a crossing closer than t_min() is not in it; HitSearch applies it).
+    bool interior_lists() const { return pov_; }
+    // Whether triangle meshes are met in double (physical) or as POV-Ray's mesh2 meets
+    // them, from single-precision vertices, normals and plane distances (povray::Mesh).
+    bool single_precision_meshes() const { return pov_; }
+
     // Whether a segment inside an absorbing dielectric is attenuated by Beer–Lambert where
     // it ends (physical), or the node fades its refracted light instead (POV-Ray).
     bool absorbs_segments() const { return !pov_; }

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <refract/core/emitters.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/integrators/spectral.h>
 #include <refract/core/ray_tree.h>
 #include <refract/geometry/error.h>
@@ -261,7 +262,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                 ctx.index[w][mi] = band_index(scene.materials[mi], r.wavelengths[w], rules);
 
     const Geometry geo(r.settings);
-    const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
+    const bool exact = polarisation_model(scene) == PolarisationModel::Exact;
     r.bins = geo.bins();
     r.classes = settings.classes;
     r.components = exact ? 4 : 1;

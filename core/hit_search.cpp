@@ -68,12 +68,20 @@ constexpr int kMinPacketLanes = 3;
 HitSearch::HitSearch(const Scene& scene, const CompatRules& rules, const TraceOptions& options)
     : scene_(scene), t_min_(rules.t_min()), t_max_(rules.t_max()), options_(options), order_(rules.search_order(scene)) {
     casts_shadow_.resize(order_.size());
-    for (size_t k = 0; k < order_.size(); ++k)
-        casts_shadow_[k] = casts_shadow(scene.materials[static_cast<size_t>(order_[k]->material)]) ? 1 : 0;
+    listed_.resize(order_.size());
+    for (size_t k = 0; k < order_.size(); ++k) {
+        const Material& m = scene.materials[static_cast<size_t>(order_[k]->material)];
+        casts_shadow_[k] = casts_shadow(m) ? 1 : 0;
+        listed_[k] = rules.interior_lists() && rules.single_precision_meshes() &&
+                     std::holds_alternative<TriangleMesh>(order_[k]->shape) && m.dielectric();
+    }
     mesh_accel_.resize(order_.size());
-    for (size_t k = 0; k < order_.size(); ++k)
-        if (const auto* m = std::get_if<TriangleMesh>(&order_[k]->shape); m && m->triangles.size() >= MeshAccel::kMinTriangles)
-            mesh_accel_[k] = std::make_unique<MeshAccel>(*m);
+    pov_mesh_.resize(order_.size());
+    for (size_t k = 0; k < order_.size(); ++k) {
+        const auto* m = std::get_if<TriangleMesh>(&order_[k]->shape);
+        if (m && rules.single_precision_meshes()) pov_mesh_[k] = std::make_unique<povray::Mesh>(*m);
+        else if (m && m->triangles.size() >= MeshAccel::kMinTriangles) mesh_accel_[k] = std::make_unique<MeshAccel>(*m);
+    }
     // Facet-local intersection for plane sets of kMinFacetPlanes to kMaxFacetPlanes planes.
     order_of_.assign(scene.objects.size(), 0);
     facet_graph_.resize(order_.size());
@@ -136,7 +144,15 @@ bool HitSearch::uses_object_bvh(const Scene& scene) {
 
 std::optional<Hit> HitSearch::intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const {
     if (const auto& a = mesh_accel_[k]) return a->intersect(ray, t_min, t_max);
+    if (const auto& p = pov_mesh_[k]) return p->intersect(ray, t_min, t_max);
     return refract::intersect(order_[k]->shape, ray, t_min, t_max);
+}
+
+bool HitSearch::list_inverts(size_t k, const Ray& ray, const RayOrigin& from) const {
+    const std::int32_t object = static_cast<std::int32_t>(order_[k] - scene_.objects.data());
+    const bool carried = from.inverted && from.object == object;
+    const int crossed = pov_mesh_[k]->crossings(ray, t_min_, from.object == object ? from.facet : -1);
+    return carried != (crossed % 2 == 1);
 }
 
 std::optional<Hit> HitSearch::intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
@@ -221,14 +237,16 @@ std::optional<HitSearch::Nearest> HitSearch::nearest(const Ray& ray, double t_mi
 std::optional<SurfaceHit> HitSearch::intersect(const Ray& ray, RenderStats& stats, RayOrigin from) const {
     ++stats.segments;
     std::optional<SurfaceHit> best;
-    if (const auto n = nearest(ray, t_min_, t_max_, [](size_t) { return true; }, order_index(from), from.facet, &stats,
-                               spheres_ ? &*spheres_ : nullptr)) {
-        const Object& obj = *order_[n->k];
-        best = SurfaceHit{n->hit, &obj, &scene_.materials[static_cast<size_t>(obj.material)], n->hit.normal, true};
-    }
-    if (best) {
-        best->entering = best->hit.normal.dot(ray.dir) < 0;
-        best->normal = best->entering ? best->hit.normal : Vec3(-best->hit.normal);
+    const auto n = nearest(ray, t_min_, t_max_, [](size_t) { return true; }, order_index(from), from.facet, &stats,
+                           spheres_ ? &*spheres_ : nullptr);
+    if (!n) return best;
+    const Object& obj = *order_[n->k];
+    best = SurfaceHit{n->hit, &obj, &scene_.materials[static_cast<size_t>(obj.material)], n->hit.normal, true};
+    best->entering = best->hit.normal.dot(ray.dir) < 0;
+    best->normal = best->entering ? best->hit.normal : Vec3(-best->hit.normal);
+    if (listed_[n->k]) {  // POV-Ray's interior lists
+        best->inverted = list_inverts(n->k, ray, from);
+        best->entering = best->entering != best->inverted;
     }
     return best;
 }
@@ -311,6 +329,7 @@ HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const Lan
     LaneSearch q(origin, dir, active, from, stats, t_min_, spheres_ ? &*spheres_ : nullptr, out, t_max_);
     out.hit = LaneMask::Constant(false);
     out.entering = LaneMask::Constant(false);
+    out.inverted = LaneMask::Constant(false);
     out.facet.fill(-1);
     if (bvh_) {  // lane by lane
         out.t = Lanes(0.0);
@@ -324,6 +343,7 @@ HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const Lan
             out.point.set(l, h->hit.point);
             out.normal.set(l, h->normal);
             out.entering[l] = h->entering;
+            out.inverted[l] = h->inverted;
             out.object[i] = h->object;
             out.facet[i] = h->hit.facet;
         });
@@ -376,6 +396,12 @@ HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const Lan
     // the incident side.
     out.entering = out.hit && (q.outward.dot(dir) < Lanes(0.0));
     out.normal = select(out.entering, q.outward, -q.outward);
+    for_each_lane(out.hit, [&](int l) {  // POV-Ray's interior lists (intersect())
+        const size_t i = static_cast<size_t>(l);
+        if (!listed_[q.best_k[i]]) return;
+        out.inverted[l] = list_inverts(q.best_k[i], Ray{origin.lane(l), dir.lane(l)}, from[i]);
+        out.entering[l] = out.entering[l] != out.inverted[l];
+    });
     return out;
 }
 
@@ -488,6 +514,7 @@ HitSearch::LaneHits HitSearch::lanes_of(const SurfaceHit& s) {
     h.point = LaneVec3::broadcast(s.hit.point);
     h.normal = LaneVec3::broadcast(s.normal);
     h.entering = LaneMask::Constant(s.entering);
+    h.inverted = LaneMask::Constant(s.inverted);
     h.object.fill(s.object);
     h.facet.fill(s.hit.facet);
     return h;
@@ -496,8 +523,9 @@ HitSearch::LaneHits HitSearch::lanes_of(const SurfaceHit& s) {
 SurfaceHit HitSearch::surface_hit(const LaneHits& h, int l) const {
     const Object* o = h.object[static_cast<size_t>(l)];
     const Vec3 n = h.normal.lane(l);
-    return SurfaceHit{Hit{h.t[l], h.point.lane(l), h.entering[l] ? n : Vec3(-n), h.facet[static_cast<size_t>(l)]}, o,
-                      &scene_.materials[static_cast<size_t>(o->material)], n, h.entering[l]};
+    const bool outward = h.entering[l] != h.inverted[l];  // n faces the ray; the outward normal as intersect() keeps it
+    return SurfaceHit{Hit{h.t[l], h.point.lane(l), outward ? n : Vec3(-n), h.facet[static_cast<size_t>(l)]}, o,
+                      &scene_.materials[static_cast<size_t>(o->material)], n, h.entering[l], h.inverted[l]};
 }
 
 }  // namespace refract

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <refract/core/compat.h>
+#include <refract/core/compat/povray_mesh.h>
 #include <refract/core/interaction.h>
 #include <refract/core/render_stats.h>
 #include <refract/core/scene.h>
@@ -56,6 +57,7 @@ public:
         Lanes t;
         LaneVec3 point, normal;  // normal on the incident side
         LaneMask entering;
+        LaneMask inverted;  // SurfaceHit::inverted per lane (entering is then the list's)
         std::array<const Object*, kLanes> object{};
         std::array<std::int32_t, kLanes> facet{};
     };
@@ -72,7 +74,7 @@ public:
     SurfaceHit surface_hit(const LaneHits& h, int l) const;
     // The RayOrigin of the branches leaving hit h.
     RayOrigin origin_of(const SurfaceHit& h) const {
-        return {static_cast<std::int32_t>(h.object - scene_.objects.data()), h.hit.facet};
+        return {static_cast<std::int32_t>(h.object - scene_.objects.data()), h.hit.facet, h.inverted};
     }
 
     // A shadow ray's nearest blocker with t_min < t < t_max, leaving `from` (none: a point
@@ -107,6 +109,17 @@ private:
                                    int from_facet = -1, RenderStats* stats = nullptr,
                                    const SphereGroup* group = nullptr) const;
     std::optional<Hit> intersect_object(size_t k, const Ray& ray, double t_min, double t_max) const;
+    // Compat "povray" (CompatRules::interior_lists): POV-Ray decides whether a ray enters or
+    // leaves a dielectric by the ray's interior list, which only its refractions change, and
+    // refract by the outward normal. The two part after the ray crossed a non-convex mesh
+    // closer than t_min (a ray refracted out near a reflex edge that re-enters within 1e-4
+    // and next meets the mesh from inside: for POV-Ray, still an entry). Whether, at a hit on
+    // order_ entry k (a dielectric mesh), the list's decision is the normal's flipped: an odd
+    // number of crossings of k in (0, t_min) (povray::Mesh::crossings), the facet the ray
+    // leaves excepted, or the difference the ray carries from its origin
+    // (RayOrigin::inverted), not both. Another object crossed within t_min, or a ray
+    // carrying a difference for one mesh that meets another object, is not followed.
+    bool list_inverts(size_t k, const Ray& ray, const RayOrigin& from) const;
     // The same for the object the ray leaves, from its facet `from_facet` (a sphere: none
     // when the ray moves away from its centre).
     std::optional<Hit> intersect_from(size_t k, int from_facet, const Ray& ray, double t_min, double t_max,
@@ -132,12 +145,14 @@ private:
     // The order in which intersect() tests the objects.
     std::vector<const Object*> order_;
     std::vector<std::unique_ptr<MeshAccel>> mesh_accel_;  // per entry of order_, null when unused
+    std::vector<std::unique_ptr<povray::Mesh>> pov_mesh_;  // per entry of order_: compat "povray"'s meshes
     std::optional<ObjectBvh> bvh_;                         // over order_'s indices
     // The spheres tested together (from kMinSphereSet of them, without the BVH): all of them
     // for intersect(), those that cast shadows for the shadow rays.
     static constexpr std::size_t kMinSphereSet = 2;
     std::optional<SphereGroup> spheres_, shadow_spheres_;
     std::vector<char> casts_shadow_;                        // per entry of order_
+    std::vector<char> listed_;                              // per entry of order_: list_inverts applies
     std::vector<std::unique_ptr<FacetGraph>> facet_graph_;  // per entry of order_: bounded plane sets
     std::vector<std::int32_t> facet_base_;                  // per entry of order_: first id in the guess cache
     std::vector<std::size_t> order_of_;                     // Scene::objects index → order_ index

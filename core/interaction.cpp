@@ -18,7 +18,7 @@ Interaction mirror_interaction(const Vec3& color, const SurfaceHit& h, const Ray
 Interaction material::uniaxial_interaction(const Uniaxial& m, const SurfaceHit& h, const Ray& ray,
                                            const InteractionContext& c) {
     const biref::Medium air{1.0, 1.0, Vec3::Zero()};
-    const biref::Medium crystal{m.n_o(c.wavelength_nm), m.n_e(c.wavelength_nm), m.optic_axis};
+    const biref::Medium crystal = m.medium(c.wavelength_nm);
     const biref::Medium& from = h.entering ? air : crystal;
     const biref::Medium& to = h.entering ? crystal : air;
     // A ray inside the crystal travels as o or e (a ray not known as either, as o).

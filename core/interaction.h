@@ -36,9 +36,12 @@ enum class ReflectanceModel {
 
 // Where a ray starts: the object (index in Scene::objects) and facet of the hit it leaves
 // (a reflected or refracted branch), or none (-1: a camera ray, a photon from a light).
+// `inverted` (compat "povray" only): POV-Ray's interior list holds the opposite of the
+// geometry for that object on this ray (SurfaceHit::inverted).
 struct RayOrigin {
     std::int32_t object = -1;
     std::int32_t facet = -1;
+    bool inverted = false;
 };
 
 struct SurfaceHit {
@@ -47,6 +50,9 @@ struct SurfaceHit {
     const Material* material = nullptr;
     Vec3 normal;           // unit normal on the incident side (normal·dir < 0)
     bool entering = true;  // the ray goes from outside to inside the object
+    // Compat "povray": `entering` is POV-Ray's interior list's decision, the opposite of the
+    // outward normal's (HitSearch, CompatRules::interior_lists); hit.normal stays outward.
+    bool inverted = false;
 };
 
 // One branch: the new ray, its colour factor (reflectance, transmittance × filter) and

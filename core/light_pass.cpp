@@ -188,7 +188,7 @@ std::shared_ptr<IlluminationMaps> light_pass(const Scene& scene, const SpectralC
     std::atomic<std::uint64_t> photons{0}, deposits{0}, segments{0}, facet_local{0}, facet_full{0};
     SceneTracer tracer(scene, options);
     const TreeLimits limits = ctx.limits(rs);
-    const bool exact = rs.polarisation == PolarisationModel::Exact;
+    const bool exact = tracer.exact();
 
     // A chunk of one emitter's photons, walked on one list.
     auto trace_photons = [&](auto payload, const Emitter& em, std::uint64_t begin, std::uint64_t end, RenderStats& st,

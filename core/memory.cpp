@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/light_pass.h>
 #include <refract/core/render.h>
 #include <refract/core/spectrum/wavelengths.h>
@@ -97,7 +98,7 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const RenderOptions& o
     const std::string image = "/camera: width × height";
     e.add(image, pixels * (3 * 8 + 4 * 4));  // the RGB image, and the writer's float RGBA copy
     if (opt.lost_energy) e.add("--lost-energy", pixels * 3 * (8 + 4));
-    if (s.polarisation == PolarisationModel::Exact) e.add("/render/polarisation", pixels * 14 * (8 + 4));
+    if (polarisation_model(scene) == PolarisationModel::Exact) e.add("/render/polarisation", pixels * 14 * (8 + 4));
     if (opt.spectral_channels && s.spectral.enabled)
         e.add("--spectral-channels",
               pixels * (8 + 4) * static_cast<double>(spectrum::sample_wavelengths(s.spectral.sampling, "/render/spectral").size()));

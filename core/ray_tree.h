@@ -39,6 +39,7 @@
 #include <deque>
 #include <cstring>
 #include <initializer_list>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -210,7 +211,12 @@ public:
     using Packets = FifoList<Packet>;
 
     RayTreeWalkerT(const SceneTracer& tracer, const TreeLimits& limits, RenderStats& stats)
-        : tracer_(tracer), limits_(limits), stats_(stats) {}
+        : tracer_(tracer), limits_(limits), stats_(stats) {
+        // The interactions carry natural light's factors or Mueller matrices by the scene's
+        // model (polarisation_model()): the payload must be that model's.
+        if (tracer.exact() == std::is_same_v<P, NaturalLight>)
+            throw std::logic_error("ray-tree walk: the payload is not the scene's polarisation model");
+    }
 
     const SceneTracer& tracer() const { return tracer_; }
     RenderStats& stats() { return stats_; }
@@ -729,8 +735,9 @@ private:
         c.depth = static_cast<std::int16_t>(p.depth + 1);
         const Object* objects = tracer_.scene().objects.data();
         for (size_t i = 0; i < static_cast<size_t>(kLanes); ++i)
-            c.from[i] = keep[static_cast<int>(i)] ? RayOrigin{static_cast<std::int32_t>(h.object[i] - objects), h.facet[i]}
-                                                  : RayOrigin{};
+            c.from[i] = keep[static_cast<int>(i)]
+                            ? RayOrigin{static_cast<std::int32_t>(h.object[i] - objects), h.facet[i], h.inverted[static_cast<int>(i)]}
+                            : RayOrigin{};
     }
 
     // The lanes m of packet p left the scene.

@@ -37,8 +37,9 @@ void validate(const Scene& scene) {
     const RenderSettings& s = scene.settings;
     CompatRules(s).validate(scene);
     validate_integrator(scene);
+    const bool exact = polarisation_model(scene) == PolarisationModel::Exact;
     for (const Material& m : scene.materials)
-        validate(m, MaterialCheck{f + ": material '" + clip_echo(m.name) + "'", s.polarisation == PolarisationModel::Exact,
+        validate(m, MaterialCheck{f + ": material '" + clip_echo(m.name) + "'", exact,
                                   s.integrator == IntegratorKind::FresnelTree});
 }
 
@@ -60,9 +61,10 @@ void check_channels(const Scene& scene, const RenderOptions& opt) {
     // The image (and the lost-energy image, 3 values too). The scene reader stops at 2^26
     // pixels; this bounds scenes built in code as well.
     bound(3, "/camera: the image");
-    if (s.polarisation == PolarisationModel::Exact) bound(14, "/render/polarisation: the Stokes, DoLP and AoLP images");
+    const bool exact = polarisation_model(scene) == PolarisationModel::Exact;
+    if (exact) bound(14, "/render/polarisation: the Stokes, DoLP and AoLP images");
     if (opt.spectral_channels) {
-        if (!s.spectral.enabled || s.compat == Compat::PovRay || s.polarisation != PolarisationModel::Natural)
+        if (!s.spectral.enabled || s.compat == Compat::PovRay || exact)
             throw InputError(f + ": spectral channels need the spectral eye pass in the physical mode with natural light");
         const std::string where = f + ": /render/spectral";
         bound(static_cast<double>(spectrum::sample_wavelengths(s.spectral.sampling, where).size()), "the spectral channels");
@@ -87,7 +89,7 @@ StokesRGB render_pixel_stokes(const Scene& scene, int i, int j, RenderStats* sta
     }
     const std::unique_ptr<Integrator> integrator = make_integrator(tracer, ctx ? &*ctx : nullptr);
     StokesRGB v = StokesRGB::Zero();
-    if (scene.settings.polarisation == PolarisationModel::Exact) {
+    if (polarisation_model(scene) == PolarisationModel::Exact) {
         LinearPolarisation lp{};
         v = integrator->pixel_stokes(i, j, local, lp);
     } else {
@@ -102,6 +104,14 @@ Vec3 render_pixel(const Scene& scene, int i, int j, RenderStats* stats) {
 }
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
+    // Spectral channels are natural light's: a scene that leaves the model to the default
+    // is rendered with natural light for them (one that asks for exact is refused below).
+    if (opt.spectral_channels && !scene.settings.requested_polarisation &&
+        polarisation_model(scene) == PolarisationModel::Exact) {
+        Scene natural = scene;
+        natural.settings.requested_polarisation = PolarisationModel::Natural;
+        return render(natural, opt);
+    }
     validate(scene);
     check_channels(scene, opt);
     const auto cancelled = [&opt] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
@@ -138,7 +148,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
         result.wavelengths = spectral->wavelengths;
         result.spectral.assign(spectral->bands() * static_cast<size_t>(W) * H, 0.0);
     }
-    const bool exact = scene.settings.polarisation == PolarisationModel::Exact;
+    const bool exact = tracer.exact();
     if (exact) {
         const size_t n = static_cast<size_t>(W) * H;
         result.polarisation = PolarisationImages{std::vector<double>(12 * n), std::vector<double>(n), std::vector<double>(n)};

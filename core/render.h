@@ -28,7 +28,8 @@ struct RenderOptions {
     // used instead of running the light pass again.
     std::shared_ptr<const IlluminationMaps> maps;
     // Spectral eye pass, physical mode, natural light: also the light of every wavelength
-    // per pixel (RenderResult::spectral; core/integrators/spectral.h spectral_radiance).
+    // per pixel (RenderResult::spectral; core/integrators/spectral.h spectral_radiance). A
+    // scene that does not set render.polarisation is then rendered with natural light.
     bool spectral_channels = false;
     // Also the per-pixel weight the limits and the threshold dropped (RenderResult::lost).
     bool lost_energy = false;

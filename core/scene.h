@@ -144,6 +144,7 @@ struct LightPassSettings {
 enum class IntegratorKind { Whitted, FresnelTree, Stochastic };
 // Natural: Yasuda's eq. 7 at every node, as if light were natural again after each
 // interface (and POV-Ray's model). Exact: Stokes vectors carried through Mueller matrices.
+// The model in force is polarisation_model(scene) (core/integrators/integrator.h).
 enum class PolarisationModel { Natural, Exact };
 enum class Compat { Physical, PovRay };
 
@@ -164,7 +165,9 @@ struct RenderSettings {
     Compat compat = Compat::Physical;
     SpectralSettings spectral;
     LightPassSettings light_pass;
-    PolarisationModel polarisation = PolarisationModel::Natural;
+    // render.polarisation as given; empty: the mode's default (polarisation_model(): exact in
+    // the physical mode wherever it is supported, else natural light).
+    std::optional<PolarisationModel> requested_polarisation;
     std::optional<PolarisationState> analyser;  // exact only: an ideal polariser before the camera
 };
 

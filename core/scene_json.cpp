@@ -341,10 +341,10 @@ void parse_polarisation(const JsonReader& r, RenderSettings& s) {
         model = p.string("model", "exact");
         if (p.has("analyser")) s.analyser = parse_polarisation_state(p.child("analyser"), false);
     }
-    if (model == "natural") s.polarisation = PolarisationModel::Natural;
-    else if (model == "exact") s.polarisation = PolarisationModel::Exact;
+    if (model == "natural") s.requested_polarisation = PolarisationModel::Natural;
+    else if (model == "exact") s.requested_polarisation = PolarisationModel::Exact;
     else r.fail_at("polarisation", "unknown model '" + clip_echo(model) + "' (natural, exact)");
-    if (s.analyser && s.polarisation != PolarisationModel::Exact)
+    if (s.analyser && s.requested_polarisation != PolarisationModel::Exact)
         r.fail_at("polarisation", "an analyser needs the \"exact\" model");
 }
 

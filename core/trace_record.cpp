@@ -6,8 +6,10 @@
 #include <optional>
 #include <type_traits>
 #include <tuple>
+#include <vector>
 
 #include <refract/core/emitters.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/optics.h>
 #include <refract/core/ray_tree.h>
 #include <refract/core/spectrum/wavelengths.h>
@@ -31,14 +33,14 @@ public:
     void background(const Entry& e) {
         TraceSegment& s = start(e);
         s.event = "background";
-        s.light = s.weight.cwiseProduct(tracer_.background(e.ray.dir));
+        s.light = light_of(e, s, tracer_.background(e.ray.dir));
         rec_.radiance += s.light;
     }
 
     void leaf(const Entry& e, const SurfaceHit& h) {
         TraceSegment& s = rec_.segments[static_cast<size_t>(current_)];
         s.event = describe(*h.material, Interaction{}, h, e.ray, 0.0).event;
-        s.light = s.weight.cwiseProduct(tracer_.local_light(h, stats_));
+        s.light = light_of(e, s, tracer_.local_light(h, stats_));
         rec_.radiance += s.light;
     }
 
@@ -56,6 +58,7 @@ public:
                 s.facet_label = c->labels[static_cast<size_t>(h.hit.facet)];
         s.entering = h.entering;
         hits_[key(h.hit.point)] = s.id;
+        hit_material_[static_cast<size_t>(s.id)] = h.material;
         const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h), false, e.wave, wavelength(e),
                                                 std::is_same_v<P, EyeStokes>);
         if (in.leaf) return false;  // leaf() names the event
@@ -82,6 +85,13 @@ private:
     using Key = std::tuple<double, double, double>;
     static Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
+    // What the segment brings to the root: the light L at its end as the walk sums it
+    // (under exact polarisation the camera's walk adds the S0 row of C·(L, 0, 0, 0)).
+    Vec3 light_of(const Entry& e, const TraceSegment& s, const Vec3& L) const {
+        if constexpr (std::is_same_v<P, EyeStokes>) return rgb_of(seen(e.pol, e.weight, L));
+        else return s.weight.cwiseProduct(L);
+    }
+
     TraceSegment& start(const Entry& e) {
         if (rec_.segments.size() >= kMaxTraceSegments)
             tree_too_large(tracer_.scene(), "took more than " + std::to_string(kMaxTraceSegments) +
@@ -101,7 +111,19 @@ private:
             s.stokes_x = e.pol.x;
             s.weight = e.weight * e.pol.S[0];
         }
+        if constexpr (std::is_same_v<P, EyeStokes>) s.weight = e.weight * throughput(e.pol);
+        s.wave = e.wave;
+        if (e.wave != biref::Wave::Isotropic && s.parent >= 0) {
+            // A crystal's wave starts at the crystal's own surface: the parent's hit.
+            const Material* m = hit_material_[static_cast<size_t>(s.parent)];
+            if (const auto* u = m ? m->as<material::Uniaxial>() : nullptr) {
+                const Vec3 k = biref::wave_vector_of_ray(u->medium(nm_), e.wave, e.ray.dir);
+                s.index = k.norm();
+                s.wave_normal = k / s.index;
+            }
+        }
         rec_.segments.push_back(s);
+        hit_material_.push_back(nullptr);
         return rec_.segments.back();
     }
 
@@ -110,6 +132,7 @@ private:
     TraceRecord& rec_;
     RenderStats& stats_;
     std::map<Key, int> hits_;
+    std::vector<const Material*> hit_material_;  // per segment, the material at its end
     int current_ = -1;
 };
 
@@ -128,9 +151,9 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
     rec.wavelength_nm = wavelength_nm;
     // A polarised trace needs the interfaces' Mueller matrices: the exact model.
     std::optional<Scene> exact;
-    if (polarisation && scene_in.settings.polarisation != PolarisationModel::Exact) {
+    if (polarisation && polarisation_model(scene_in) != PolarisationModel::Exact) {
         exact = scene_in;
-        exact->settings.polarisation = PolarisationModel::Exact;
+        exact->settings.requested_polarisation = PolarisationModel::Exact;
     }
     const Scene& scene = exact ? *exact : scene_in;
     SceneTracer tracer(scene);
@@ -146,9 +169,11 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
         RecordingEnds<P> ends(tracer, wavelength_nm, rec, stats);
         typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{Ray{ray.origin, dir}, Vec3(1, 1, 1)}};
         if constexpr (std::is_same_v<P, LightStokes>) list.front().pol = emitted(*polarisation, dir);
+        if constexpr (std::is_same_v<P, EyeStokes>) list.front().pol = camera_stokes(scene, list.front().ray);
         walker.walk(list, ends);
     };
     if (polarisation) walk(LightStokes{});
+    else if (tracer.exact()) walk(EyeStokes{});
     else walk(NaturalLight{});
     return rec;
 }

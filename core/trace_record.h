@@ -1,7 +1,8 @@
 #pragma once
 // Path record: every segment of one ray's tree, walked by the one ray-tree walker with
-// the scene's threshold and limits (natural light), with what happened at its end: the
-// point, object and facet, the event, the cosines, Rs and Rp, the weight, the wavelength.
+// the scene's threshold, limits and polarisation model, with what happened at its end: the
+// point, object and facet, the event, the cosines, Rs and Rp, the weight, the wavelength;
+// inside a uniaxial crystal the wave (o or e) and its index.
 // `refract trace` writes it as JSON (docs/scene-format.md, "Tracing one ray").
 #include <cstddef>
 #include <string>
@@ -16,7 +17,10 @@ struct TraceSegment {
     int parent = -1;     // the segment whose end this one starts from; −1: the primary ray
     int depth = 0, reflections = 0, transmissions = 0;
     Ray ray;
-    Vec3 weight{1, 1, 1};  // cumulative attenuation along the segment (after its absorption)
+    // Cumulative attenuation along the segment (after its absorption); under exact
+    // polarisation that of unpolarised light arriving along it (the colour weight times the
+    // first element of its Mueller matrix to the camera).
+    Vec3 weight{1, 1, 1};
     // What ends it: "background", or at a hit "diffuse", "emissive", "mirror",
     // "reflection and refraction", "reflection only" (the refracted branch too weak or
     // absent), "total internal reflection".
@@ -40,6 +44,13 @@ struct TraceSegment {
     bool polarised = false;
     Eigen::Vector4d stokes = Eigen::Vector4d::Zero();
     Vec3 stokes_x{0, 0, 0};
+    // Inside a uniaxial crystal: the wave the segment travels as (Ordinary, Extraordinary;
+    // Isotropic elsewhere), its refractive index there (n_o; for the e wave the index of its
+    // wave normal, biref::extraordinary_index) and its unit wave normal (the segment's
+    // direction is the ray's, which the e wave's walk-off turns away from it).
+    biref::Wave wave = biref::Wave::Isotropic;
+    double index = 0;
+    Vec3 wave_normal{0, 0, 0};
 };
 
 // The most segments one record holds (docs/limits.md): a tree with more is refused as
@@ -59,6 +70,8 @@ struct TraceRecord {
 // With `polarisation`: the ray is light of that state travelling along it (a linear
 // state's angle measured from its reference as for a light), walked with exact
 // polarisation whatever the scene's model, each segment carrying its Stokes vector.
+// Without: the camera's walk under the scene's model (polarisation_model()), so that a
+// pixel's record sums to its rendered value.
 TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm = 0,
                       const PolarisationState* polarisation = nullptr);
 

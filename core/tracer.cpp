@@ -1,5 +1,7 @@
 #include <refract/core/tracer.h>
 
+#include <refract/core/integrators/integrator.h>
+
 namespace refract {
 
 SceneTracer::SceneTracer(const Scene& scene, const TraceOptions& options)
@@ -9,7 +11,8 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceOptions& options)
       search_(std::make_unique<HitSearch>(scene, rules_, options)),
       lighting_(std::make_unique<Lighting>(scene, rules_, *search_)),
       camera_basis_(scene.camera.basis()) {
-    packets_ = options.packets && scene.settings.polarisation != PolarisationModel::Exact;
+    exact_ = polarisation_model(scene) == PolarisationModel::Exact;
+    packets_ = options.packets && !exact_;
     for (const Material& m : scene.materials) {
         absorbing_ = absorbing_ || (rules_.absorbs_segments() && refract::absorption(m) != nullptr);
         packets_ = packets_ && in_packets(m);
@@ -24,7 +27,7 @@ InteractionContext SceneTracer::context(double band_ior, bool split, biref::Wave
     c.rules = &rules_;
     c.band_ior = band_ior;
     c.split = split;
-    c.exact = scene_.settings.polarisation == PolarisationModel::Exact;
+    c.exact = exact_;
     c.wave = wave;
     c.wavelength_nm = wavelength_nm;
     c.adjoint = adjoint;

@@ -50,6 +50,8 @@ public:
     // pixel): TraceOptions::packets, natural light, and every material in packets (a
     // uniaxial crystal's o and e waves ride one ray at a time).
     bool packets() const { return packets_; }
+    // Whether the render carries exact polarisation (polarisation_model(), core/integrators/integrator.h).
+    bool exact() const { return exact_; }
     // The camera's ray through image position (x, y) (Camera::ray, its basis computed once).
     Ray camera_ray(double x, double y) const { return scene_.camera.ray(camera_basis_, x, y); }
     Vec3 background(const Vec3& dir) const { return scene_.background.radiance(dir); }
@@ -90,6 +92,7 @@ private:
     std::unique_ptr<HitSearch> search_;
     std::unique_ptr<Lighting> lighting_;
     bool absorbing_ = false;
+    bool exact_ = false;
     bool packets_ = true;
     Camera::Basis camera_basis_;
 };

@@ -150,7 +150,7 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
     scene_->materials.push_back({"gem", d});
     scene_->objects.push_back({"gem", gem.solid, 0});
     exact_ = o.exact_polarisation;
-    scene_->settings.polarisation = exact_ ? PolarisationModel::Exact : PolarisationModel::Natural;
+    scene_->settings.requested_polarisation = exact_ ? PolarisationModel::Exact : PolarisationModel::Natural;
     scene_->settings.threshold = threshold_ = o.threshold;
     scene_->settings.max_depth = max_depth_ = o.max_depth;
     tracer_ = std::make_unique<SceneTracer>(*scene_);

@@ -44,7 +44,9 @@ json scene_json(const SceneParams& p) {
                       json::array({p.shortcut_wavelengths[0], p.shortcut_wavelengths[1], p.shortcut_wavelengths[2]})},
                      {"max_reflections", 8},
                      {"max_transmissions", 8}};
-    json render = {{"max_depth", kMaxDepth}, {"threshold", 1.0 / 255.0}, {"spectral", spectral}};
+    // The paper's model, natural light at every interface, kept explicitly (the physical
+    // mode's default is exact polarisation).
+    json render = {{"max_depth", kMaxDepth}, {"threshold", 1.0 / 255.0}, {"spectral", spectral}, {"polarisation", "natural"}};
     if (p.light_pass)
         render["light_pass"] = {{"photons", p.photons}, {"element_size", p.element_size}, {"region", 3},
                                 {"seed", p.seed}, {"filter", filter_name(p.filter)}};

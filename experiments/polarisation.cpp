@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <refract/core/illumination_map.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/integrators/spectral.h>
 #include <refract/core/light_pass.h>
 #include <refract/core/ray_tree.h>
@@ -194,7 +195,7 @@ json with_polarisation(json j, const json& pol, const std::string& note) {
 std::vector<double> light_by_depth(const Scene& scene, int threads) {
     TreeLimits limits = tree_limits(scene.settings);
     if (scene.settings.spectral.enabled) limits = SpectralContext::build(scene).limits(scene.settings);
-    return scene.settings.polarisation == PolarisationModel::Exact ? depth_walk<EyeStokes>(scene, limits, threads)
+    return polarisation_model(scene) == PolarisationModel::Exact ? depth_walk<EyeStokes>(scene, limits, threads)
                                                                    : depth_walk<NaturalLight>(scene, limits, threads);
 }
 

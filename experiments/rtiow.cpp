@@ -83,7 +83,7 @@ json stage_scene(const std::string& id, bool quick) {
           {"glass", glass}}},
         {"objects", objects},
         {"render", {{"integrator", "stochastic"}, {"samples", quick ? 8 : 100}, {"max_depth", kMaxDepth}, {"jitter", true},
-                    {"seed", 1u}}},
+                    {"seed", 1u}, {"polarisation", "natural"}}},
     };
 }
 
@@ -104,9 +104,10 @@ json convergence_scene(int spp, bool quick) {
     j["materials"]["centre"] = {{"type", "diffuse"}, {"color", vec(0.1, 0.2, 0.5)}, {"ambient", 0.2}};
     j["lights"] = json::array({{{"position", vec(-3, 5, 2)}, {"color", vec(1, 1, 1)}}});
     if (spp == 0)
-        j["render"] = {{"integrator", "fresnel-tree"}, {"threshold", 0}, {"max_depth", kMaxDepth}};
+        j["render"] = {{"integrator", "fresnel-tree"}, {"threshold", 0}, {"max_depth", kMaxDepth}, {"polarisation", "natural"}};
     else
-        j["render"] = {{"integrator", "stochastic"}, {"samples", spp}, {"max_depth", kMaxDepth}, {"jitter", false}, {"seed", 7u}};
+        j["render"] = {{"integrator", "stochastic"}, {"samples", spp}, {"max_depth", kMaxDepth}, {"jitter", false}, {"seed", 7u},
+                       {"polarisation", "natural"}};
     return j;
 }
 

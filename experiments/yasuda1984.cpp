@@ -125,7 +125,7 @@ json sphere_scene(const json& glass, const std::string& description, bool quick)
                     })},
         {"lights", json::array({{{"position", vec(-4, 6, -5)}, {"color", vec(1, 1, 1)}}})},
         {"render", {{"integrator", "fresnel-tree"}, {"max_depth", 20}, {"threshold", 0.001}, {"samples", quick ? 1 : 16},
-                    {"jitter", !quick}, {"seed", 1u}}},
+                    {"jitter", !quick}, {"seed", 1u}, {"polarisation", "natural"}}},
     };
 }
 

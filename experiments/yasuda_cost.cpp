@@ -191,7 +191,8 @@ json tree_growth_scene(int max_depth, double threshold, const std::string& integ
                          {"radius", 0.4}},
                     })},
         {"lights", json::array({{{"position", vec(0, 1.2, 0)}, {"color", vec(1, 1, 1)}}})},
-        {"render", {{"integrator", integrator}, {"max_depth", max_depth}, {"threshold", threshold}}},
+        {"render",
+         {{"integrator", integrator}, {"max_depth", max_depth}, {"threshold", threshold}, {"polarisation", "natural"}}},
     };
 }
 

@@ -141,7 +141,7 @@ TEST_CASE("Beer-Lambert: the stored Whitted tree and the FIFO walk agree on an a
               {"background", {{"type", "gradient"}}},
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.6}, {"absorption", "emerald"}}}}},
               {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
-              {"render", {{"max_depth", 7}, {"threshold", 0}}}};
+              {"render", {{"max_depth", 7}, {"threshold", 0}, {"polarisation", "natural"}}}};  // Whitted's model
     const Image tree = render(parse_scene(j, "fifo.json"), threads(1)).image;
     j["render"]["integrator"] = "whitted";
     const Image stored = render(parse_scene(j, "whitted.json"), threads(1)).image;

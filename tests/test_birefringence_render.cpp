@@ -182,6 +182,7 @@ TEST_CASE("Energy through a calcite slab: every branch of the tree sums to the i
     nlohmann::json j = bx::plate_scene(0.5, 45, 8, 2, -1);
     j["objects"] = nlohmann::json::array({j["objects"][0]});
     j["materials"]["calcite"]["optic_axis"] = {0.3, 0.8, 0.52};
+    j["render"]["polarisation"] = "natural";
     const Scene s = parse_scene(j, "slab.json");
     const Vec3 d = Vec3(0.5, -1.0, 0.3).normalized();
     const Ray ray{Vec3(0, 2, 0) - 2.5 * d, d};

@@ -199,3 +199,26 @@ TEST_CASE("refract trace --polarisation: each segment's Stokes vector written â€
     CHECK_FALSE(fs::exists(out));
     fs::remove_all(dir);
 }
+
+TEST_CASE("refract trace through calcite: each segment inside names its wave (o/e) and its index in the JSON",
+          "[cli][birefringence]") {
+    const fs::path dir = fresh_dir("tracecalcite");
+    // A calcite slab, optic axis at 45 degrees to its normal, seen straight down.
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,3,-3], "look_at": [0,0.3,0], "width": 4, "height": 3},
+        "materials": {"calcite": {"type": "uniaxial", "crystal": "calcite", "optic_axis": [0.7071067811865476, 0.7071067811865476, 0]}},
+        "objects": [{"type": "polyhedron", "material": "calcite",
+                     "planes": [[1,0,0,1], [-1,0,0,1], [0,0,1,1], [0,0,-1,1], [0,1,0,0.55], [0,-1,0,-0.05]]}],
+        "render": {"spectral": false, "max_depth": 3}})";
+    const std::string out = (dir / "t.json").string();
+    REQUIRE(run("trace " + (dir / "s.json").string() + " --ray 0.1 2 0.2 0 -1 0 -o " + out, dir).code == 0);
+    std::ifstream f(out);
+    std::stringstream text;
+    text << f.rdbuf();
+    const std::string t = text.str();
+    CHECK(t.find("\"wave\": \"o\"") != std::string::npos);
+    CHECK(t.find("\"wave\": \"e\"") != std::string::npos);
+    CHECK(t.find("\"index\": 1.65") != std::string::npos);  // n_o of calcite at the D line, 1.6583
+    CHECK(t.find("\"index\": 1.56") != std::string::npos);  // n_e(45Â°) = 1.5652
+    CHECK(t.find("\"wave_normal\"") != std::string::npos);
+    fs::remove_all(dir);
+}

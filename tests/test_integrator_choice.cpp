@@ -62,6 +62,7 @@ TEST_CASE("Integrators: Whitted's stored tree counts the light its depth limit d
     s.materials[0].kind = material::Dielectric{};
     const RenderResult whitted = render(s);
     s.settings.integrator = IntegratorKind::FresnelTree;
+    s.settings.requested_polarisation = PolarisationModel::Natural;  // Whitted's model
     s.settings.threshold = 0;
     const RenderResult tree = render(s);
     REQUIRE(whitted.stats.depth_limited > 0);
@@ -79,6 +80,6 @@ TEST_CASE("Integrators: exact polarisation with the Whitted integrator is refuse
     Scene s = dispersive_sphere("whitted");
     s.settings.spectral.enabled = false;
     s.materials[0].kind = material::Dielectric{};
-    s.settings.polarisation = PolarisationModel::Exact;
+    s.settings.requested_polarisation = PolarisationModel::Exact;
     CHECK_THROWS_WITH(render(s), Catch::StartsWith("sphere.json: /render/polarisation: \"exact\" needs the fresnel-tree"));
 }

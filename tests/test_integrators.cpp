@@ -92,6 +92,7 @@ TEST_CASE("fresnel-tree with threshold 0 equals Whitted's stored tree with Fresn
           "[yasuda1984][whitted][fresnel-tree]") {
     Scene a = tree_scene();
     a.settings.integrator = IntegratorKind::FresnelTree;
+    a.settings.requested_polarisation = PolarisationModel::Natural;  // Whitted's model
     Scene b = a;
     b.settings.integrator = IntegratorKind::Whitted;
     const auto ra = render(a), rb = render(b);

@@ -33,6 +33,7 @@ inline bool dispersive(const Glow&) { return false; }
 inline double band_index(const Glow&, double, const CompatRules&) { return 0.0; }
 inline const spectrum::Absorption* absorption(const Glow&) { return nullptr; }
 inline bool in_packets(const Glow&) { return true; }
+inline bool carries_stokes(const Glow&) { return true; }
 inline NodeRecord describe(const Glow&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"glow"};
 }
@@ -98,6 +99,12 @@ TEST_CASE("Material rulebook: the built-in kinds' rules as the scene file names 
     CHECK(casts_shadow(Material{"m", material::Mirror{}}));
     CHECK(!in_packets(Material{"u", material::Uniaxial{}}));
     CHECK(in_packets(Material{"d", material::Dielectric{}}));
+    // Exact polarisation needs a dielectric's amplitudes (the physical mode's default model).
+    CHECK(carries_stokes(Material{"d", material::Dielectric{}}));
+    material::Dielectric schlick;
+    schlick.reflectance = ReflectanceModel::Schlick;
+    CHECK(!carries_stokes(Material{"s", schlick}));
+    CHECK(carries_stokes(Material{"u", material::Uniaxial{}}));
     CHECK(stochastic_role(Material{"l", material::Lambertian{}}) == StochasticRole::Scatters);
     CHECK(stochastic_role(Material{"m", material::Metal{}}) == StochasticRole::Scatters);
     CHECK(stochastic_role(Material{"d", material::Diffuse{}}) == StochasticRole::Leaf);

@@ -17,10 +17,11 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-Scene small_scene(int w, int h) {
+Scene small_scene(int w, int h, const std::string& polarisation = "natural") {
     return parse_scene(nlohmann::json::parse(R"({"camera": {"location": [0,0,-4], "width": )" + std::to_string(w) +
                                              R"(, "height": )" + std::to_string(h) + R"(},
-        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}]})"),
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}],
+        "render": {)" + (polarisation.empty() ? std::string() : R"("polarisation": ")" + polarisation + "\"") + "}}"),
                        "small.json");
 }
 
@@ -53,6 +54,10 @@ TEST_CASE("Memory estimate: the image, each requested channel image and the budg
     CHECK(r.image.width == 100);
     o.max_memory = 1024;
     CHECK_THROWS_WITH(render(s, o), Contains("/camera: width × height") && Contains("1 KiB"));
+    // The physical mode's default, exact polarisation, keeps the Stokes, DoLP and AoLP
+    // images too: 14 values per pixel, each a double and the writer's float.
+    o.max_memory = 0;
+    CHECK(estimate_render_memory(small_scene(100, 50, ""), o, 1).total() - base == Approx(100.0 * 50 * 14 * 12));
 }
 
 TEST_CASE("Memory estimate: the illumination maps' elements equal those the light pass allocates", "[limits]") {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <refract/core/integrators/fresnel_tree.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/optics.h>
 #include <refract/core/polarisation_state.h>
 #include <refract/core/render.h>
@@ -73,7 +74,7 @@ TEST_CASE("Exact polarisation equals natural light where light meets a single in
               {"background", {1, 1, 1}},
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.7}, {"filter", {0, 0, 0}}}}}},
               {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
-              {"render", {{"max_depth", 6}, {"threshold", 0}}}};
+              {"render", {{"max_depth", 6}, {"threshold", 0}, {"polarisation", "natural"}}}};
     const RenderResult natural = render(parse_scene(j, "n.json"), threads(1));
     j["render"]["polarisation"] = "exact";
     const RenderResult exact = render(parse_scene(j, "e.json"), threads(1));
@@ -93,7 +94,7 @@ TEST_CASE("Exact polarisation: a multi-bounce glass sphere differs from per-node
               {"background", {{"type", "gradient"}}},
               {"materials", {{"glass", {{"type", "dielectric"}, {"ior", 1.7}}}}},
               {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
-              {"render", {{"max_depth", 8}, {"threshold", 0}}}};
+              {"render", {{"max_depth", 8}, {"threshold", 0}, {"polarisation", "natural"}}}};
     const RenderResult natural = render(parse_scene(j, "n.json"), threads(1));
     j["render"]["polarisation"] = "exact";
     const RenderResult exact = render(parse_scene(j, "e.json"), threads(1));
@@ -143,4 +144,62 @@ TEST_CASE("Exact polarisation is refused where it has no meaning", "[polarisatio
     CHECK_THROWS_WITH(parse_scene(j, "a.json"), Catch::Contains("analyser"));
     j = glass_floor(50, "sideways");
     CHECK_THROWS_WITH(parse_scene(j, "x.json"), Catch::Contains("unknown model"));
+}
+
+TEST_CASE("The physical mode defaults to exact polarisation wherever it is supported, compat, Whitted, stochastic "
+          "and a non-Fresnel reflectance keep natural light",
+          "[polarisation]") {
+    json j = glass_floor(50, "exact");
+    j["render"].erase("polarisation");
+    const auto model = [](const json& scene) { return polarisation_model(parse_scene(scene, "d.json")); };
+    CHECK(model(j) == PolarisationModel::Exact);  // physical, fresnel-tree, Fresnel reflectance
+    json k = j;
+    k["materials"]["glass"].erase("ior");
+    k["materials"]["glass"]["dispersion"] = "N-BK7";  // the spectral eye pass
+    CHECK(model(k) == PolarisationModel::Exact);
+    k = j;
+    k["render"]["compat"] = "povray";  // POV-Ray's model
+    CHECK(model(k) == PolarisationModel::Natural);
+    k = j;
+    k["render"]["integrator"] = "whitted";
+    CHECK(model(k) == PolarisationModel::Natural);
+    k = j;
+    k["render"]["integrator"] = "stochastic";
+    CHECK(model(k) == PolarisationModel::Natural);
+    for (const char* r : {"schlick", "fresnel-s", "constant"}) {
+        k = j;
+        k["materials"]["glass"]["reflectance"] = r;
+        if (std::string(r) == "constant") k["materials"]["glass"]["reflectivity"] = 0.1;
+        CHECK(model(k) == PolarisationModel::Natural);
+    }
+    k = j;
+    k["render"]["polarisation"] = "natural";  // asked for explicitly
+    CHECK(model(k) == PolarisationModel::Natural);
+    // The scene that does not say renders exactly like the one asking for "exact" (with the
+    // Stokes images), and a render flipped to compat "povray" after parsing falls back to
+    // natural light rather than being refused.
+    const RenderResult d = render(parse_scene(j, "d.json"), threads(1));
+    const RenderResult e = render(parse_scene(glass_floor(50, "exact"), "e.json"), threads(1));
+    REQUIRE(d.polarisation);
+    CHECK(d.image.rgb == e.image.rgb);
+    Scene pov = parse_scene(j, "p.json");
+    pov.settings.compat = Compat::PovRay;
+    CHECK(polarisation_model(pov) == PolarisationModel::Natural);
+    CHECK_FALSE(render(pov, threads(1)).polarisation);
+}
+
+TEST_CASE("Spectral channels of a scene without render.polarisation are rendered with natural light", "[polarisation]") {
+    json j = glass_floor(50, "natural");
+    j["materials"]["glass"].erase("ior");
+    j["materials"]["glass"]["dispersion"] = "N-BK7";
+    RenderOptions o = threads(1);
+    o.spectral_channels = true;
+    const RenderResult natural = render(parse_scene(j, "n.json"), o);
+    j["render"].erase("polarisation");
+    const RenderResult by_default = render(parse_scene(j, "d.json"), o);
+    CHECK(by_default.image.rgb == natural.image.rgb);
+    CHECK(by_default.spectral == natural.spectral);
+    CHECK_FALSE(by_default.polarisation);
+    j["render"]["polarisation"] = "exact";  // asked for: refused, naming the reason
+    CHECK_THROWS_WITH(render(parse_scene(j, "e.json"), o), Catch::Contains("natural light"));
 }

@@ -88,6 +88,7 @@ TEST_CASE("RTIOW depth: the stochastic integrator's mean equals the Fresnel tree
     const SceneTracer tracer(s);
     Scene tree_scene = s;
     tree_scene.settings.integrator = IntegratorKind::FresnelTree;
+    tree_scene.settings.requested_polarisation = PolarisationModel::Natural;  // the stochastic integrator's model
     const SceneTracer tree(tree_scene);
     RenderStats st;
     const int samples = 20000;
@@ -132,6 +133,7 @@ TEST_CASE("Depth limit: the ray after the last bounce still shows an emissive su
         s.settings.max_depth = depth;
         Scene tree_scene = s;
         tree_scene.settings.integrator = IntegratorKind::FresnelTree;
+        tree_scene.settings.requested_polarisation = PolarisationModel::Natural;  // fresnel_tree_radiance's model
         RenderStats st;
         Rng rng(1, 0, 0);
         const Vec3 stochastic = stochastic_radiance(SceneTracer(s), centre, rng, st);

@@ -6,9 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/optics.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
+#include <refract/core/spectrum/dispersion.h>
 #include <refract/core/trace_record.h>
 #include <refract/geometry/error.h>
 
@@ -101,4 +103,111 @@ TEST_CASE("Path record: the normal at each hit is unit, faces the incoming ray a
         }
     }
     CHECK(dielectric >= 2);
+}
+
+namespace {
+
+// A calcite slab 0.5 thick (0.05 < y < 0.55) under a sky, its optic axis in the x-y plane
+// at `axis_deg` to the slab's normal (+y).
+Scene calcite_slab(double axis_deg, const std::string& polarisation = "") {
+    const double a = axis_deg * M_PI / 180;
+    json j = {{"camera", {{"location", {0, 3, -3}}, {"look_at", {0, 0.3, 0}}, {"width", 8}, {"height", 6}}},
+              {"background", {0.3, 0.5, 0.7}},
+              {"materials", {{"calcite", {{"type", "uniaxial"}, {"crystal", "calcite"}, {"optic_axis", {std::sin(a), std::cos(a), 0}}}}}},
+              {"objects", {{{"type", "polyhedron"}, {"name", "slab"}, {"material", "calcite"},
+                            {"planes", {{1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 0, 1, 1}, {0, 0, -1, 1}, {0, 1, 0, 0.55}, {0, -1, 0, -0.05}}}}}},
+              {"render", {{"max_depth", 4}, {"threshold", 1e-6}, {"spectral", false}}}};
+    if (!polarisation.empty()) j["render"]["polarisation"] = polarisation;
+    return parse_scene(j, "calcite.json");
+}
+
+// The index ellipsoid in closed form: n_e(θ) = n_o n_e / √(n_e² cos²θ + n_o² sin²θ).
+double closed_form_e_index(double no, double ne, double theta) {
+    const double c = std::cos(theta), s = std::sin(theta);
+    return no * ne / std::sqrt(ne * ne * c * c + no * no * s * s);
+}
+
+}  // namespace
+
+TEST_CASE("Path record in calcite: each segment's wave (o/e) and index, the e wave's against n_e(theta) in closed form",
+          "[trace][birefringence]") {
+    const auto calcite = *spectrum::uniaxial_crystal("calcite");
+    const double no = calcite.ordinary.n(spectrum::fraunhofer::D), ne = calcite.extraordinary.n(spectrum::fraunhofer::D);
+    for (double axis_deg : {30.0, 45.0, 70.0}) {
+        INFO("optic axis at " << axis_deg << " degrees to the normal");
+        const double theta = axis_deg * M_PI / 180;
+        const Vec3 axis(std::sin(theta), std::cos(theta), 0);
+        // Normal incidence: both wave normals stay on the normal, so the e wave's is at θ
+        // to the axis, while its ray walks off.
+        const TraceRecord r = trace_ray(calcite_slab(axis_deg), Ray{Vec3(0.1, 2, 0.2), Vec3(0, -1, 0)});
+        int o = 0, e = 0;
+        for (const TraceSegment& s : r.segments) {
+            if (s.wave == biref::Wave::Isotropic) {
+                CHECK(s.index == 0);  // in the air: no crystal wave
+                continue;
+            }
+            REQUIRE(s.parent >= 0);
+            CHECK(r.segments[static_cast<size_t>(s.parent)].object == "slab");
+            if (s.wave == biref::Wave::Ordinary) {
+                ++o;
+                CHECK(s.index == Approx(no).epsilon(1e-15));
+            } else {
+                ++e;
+                const double cos_k = std::abs(s.wave_normal.dot(axis));
+                CHECK(s.index == Approx(closed_form_e_index(no, ne, std::acos(cos_k))).epsilon(1e-13));
+                CHECK(s.wave_normal.norm() == Approx(1.0).epsilon(1e-14));
+            }
+            if (s.parent == 0) {  // the two waves entering from the first hit
+                CHECK(std::abs(s.wave_normal.y()) == Approx(1.0).epsilon(1e-13));
+                if (s.wave == biref::Wave::Extraordinary) {
+                    CHECK(s.index == Approx(closed_form_e_index(no, ne, theta)).epsilon(1e-13));
+                    CHECK(s.ray.dir.dot(s.wave_normal) < 1 - 1e-4);  // the ray walks off the wave normal
+                } else {
+                    CHECK((s.ray.dir - s.wave_normal).norm() < 1e-15);  // o: the ray is along its wave normal
+                }
+            }
+        }
+        CHECK(o >= 1);
+        CHECK(e >= 1);
+    }
+    // Oblique incidence, 35° in the plane of the normal and the axis: the e wave's wave
+    // normal keeps the tangential component (phase matching, n_e(θ_k) sin θ_k = sin θ_i),
+    // and its index is the closed form at its own angle to the axis.
+    const double ti = 35 * M_PI / 180;
+    const Vec3 d(std::sin(ti), -std::cos(ti), 0);
+    const TraceRecord r = trace_ray(calcite_slab(45), Ray{Vec3(0, 0.55, 0) - 3 * d, d});
+    bool e_seen = false;
+    for (const TraceSegment& s : r.segments)
+        if (s.parent == 0 && s.wave != biref::Wave::Isotropic) {
+            const Vec3 k = s.index * s.wave_normal;
+            CHECK(k.x() == Approx(std::sin(ti)).epsilon(1e-12));  // the tangential part of the incident wave vector
+            CHECK(k.z() == Approx(0).margin(1e-15));
+            if (s.wave == biref::Wave::Extraordinary) {
+                e_seen = true;
+                const Vec3 axis(std::sin(M_PI / 4), std::cos(M_PI / 4), 0);
+                CHECK(s.index == Approx(closed_form_e_index(no, ne, std::acos(std::abs(s.wave_normal.dot(axis))))).epsilon(1e-13));
+                CHECK(s.index != Approx(no).epsilon(1e-3));
+            } else {
+                CHECK(s.index == Approx(no).epsilon(1e-15));
+            }
+        }
+    CHECK(e_seen);
+    // At another wavelength the indices are the crystal's there.
+    const TraceRecord blue = trace_ray(calcite_slab(45), Ray{Vec3(0.1, 2, 0.2), Vec3(0, -1, 0)}, 450.0);
+    for (const TraceSegment& s : blue.segments)
+        if (s.parent == 0 && s.wave == biref::Wave::Ordinary) CHECK(s.index == Approx(calcite.ordinary.n(450.0)).epsilon(1e-15));
+}
+
+TEST_CASE("Path record under the physical mode's default (exact polarisation) sums to the rendered pixel", "[trace]") {
+    const Scene s = sphere_on_floor({{"type", "dielectric"}, {"ior", 1.5}});
+    REQUIRE(polarisation_model(s) == PolarisationModel::Exact);
+    for (const auto& [i, j] : {std::pair{20, 14}, std::pair{22, 9}}) {
+        const TraceRecord r = trace_pixel(s, i, j);
+        CHECK((r.radiance - render_pixel(s, i, j)).cwiseAbs().maxCoeff() == 0.0);
+    }
+    // A calcite slab too (its o and e waves carry their own Mueller matrices).
+    const Scene c = calcite_slab(45);
+    REQUIRE(polarisation_model(c) == PolarisationModel::Exact);
+    const TraceRecord r = trace_pixel(c, 4, 3);
+    CHECK((r.radiance - render_pixel(c, 4, 3)).cwiseAbs().maxCoeff() == 0.0);
 }

@@ -38,6 +38,10 @@ ImageDifference compare_images(const Image& a, const Image& b, double tolerance)
     return d;
 }
 
+ImageDifference compare_with_povray_image(const Image& refract, const Image& povray, const Targets& targets) {
+    return compare_images(clamp01(refract), povray, targets.pixel_tolerance);
+}
+
 Image clamp01(const Image& img) {
     Image out(img.width, img.height);
     throw_if_failed(image_io().clamp01(img.rgb.data(), img.width, img.height, out.rgb.data()), "");

@@ -90,8 +90,7 @@ Comparison compare_with_povray(const json& scene_json, const std::string& name, 
         }
     }
     c.diff = compare_images(c.refract, c.povray, targets.pixel_tolerance);
-    const bool pass = c.diff.fraction_over <= targets.max_fraction_over && c.diff.rmse <= targets.rmse;
-    c.outcome = pass ? Comparison::Outcome::Pass : Comparison::Outcome::Fail;
+    c.outcome = targets.met_by(c.diff) ? Comparison::Outcome::Pass : Comparison::Outcome::Fail;
     return c;
 }
 

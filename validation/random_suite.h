@@ -18,15 +18,6 @@
 
 namespace refract::validation {
 
-// The suite's targets (docs/validation.md): a scene passes when at most
-// `max_fraction_over` of its pixels differ by more than `pixel_tolerance` in a channel
-// and the RMSE is at most `rmse`.
-struct Targets {
-    double pixel_tolerance = 1e-3;
-    double max_fraction_over = 1e-3;
-    double rmse = 2e-4;
-};
-
 // One scene through both renderers.
 struct Comparison {
     enum class Outcome { Pass, Fail, Skip } outcome = Outcome::Skip;

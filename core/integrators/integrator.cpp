@@ -53,8 +53,17 @@ void validate_integrator(const Scene& scene) {
     if (s.spectral.enabled && !r.spectral)
         throw InputError(f + ": /render/integrator: \"" + r.name + "\" cannot render a spectral pass (render.spectral, "
                              "or a dispersive material): " + r.spectral_why + "; use \"fresnel-tree\"");
-    if (s.polarisation == PolarisationModel::Exact && !r.exact)
+    if (polarisation_model(scene) == PolarisationModel::Exact && !r.exact)
         throw InputError(f + ": /render/polarisation: \"exact\" needs the fresnel-tree integrator (or the spectral eye pass)");
+}
+
+PolarisationModel polarisation_model(const Scene& scene) {
+    const RenderSettings& s = scene.settings;
+    if (s.requested_polarisation) return *s.requested_polarisation;
+    if (s.compat != Compat::Physical || !row(s.integrator).exact) return PolarisationModel::Natural;
+    for (const Material& m : scene.materials)
+        if (!carries_stokes(m)) return PolarisationModel::Natural;
+    return PolarisationModel::Exact;
 }
 
 std::unique_ptr<Integrator> make_integrator(const SceneTracer& tracer, const SpectralContext* spectral) {

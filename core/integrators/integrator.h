@@ -60,6 +60,12 @@ std::unique_ptr<Integrator> make_integrator(const SceneTracer& tracer, const Spe
 // Throws InputError, one line naming the setting, for a combination of integrator, spectral
 // pass and polarisation that cannot be honoured.
 void validate_integrator(const Scene& scene);
+// The polarisation model a render of `scene` uses (docs/polarisation.md): render.polarisation
+// when the scene gives it; else exact in the physical mode wherever it is supported (an
+// integrator whose table row carries Stokes vectors: the fresnel-tree and the spectral eye
+// pass; every material able to pass it: carries_stokes), natural light elsewhere (compat
+// "povray", POV-Ray's model; Whitted, stochastic; a non-Fresnel reflectance).
+PolarisationModel polarisation_model(const Scene& scene);
 // The integrators' names in scene files, in the table's order; the kind of a name.
 std::vector<std::string> integrator_names();
 std::optional<IntegratorKind> integrator_of(const std::string& name);

@@ -53,6 +53,8 @@ inline double band_index(const Dielectric& m, double nm, const CompatRules& rule
 }
 inline const spectrum::Absorption* absorption(const Dielectric& m) { return m.absorption ? &*m.absorption : nullptr; }
 inline bool in_packets(const Dielectric&) { return true; }
+// Exact polarisation needs the amplitudes: the Fresnel reflectance.
+inline bool carries_stokes(const Dielectric& m) { return m.reflectance == ReflectanceModel::Fresnel; }
 // The node's relative index, cosines and Fresnel reflectances (at the material's own ior
 // or the band's), and whether it reflected totally.
 inline NodeRecord describe(const Dielectric& m, const Interaction& in, const SurfaceHit& h, const Ray& ray,
@@ -76,7 +78,7 @@ inline NodeRecord describe(const Dielectric& m, const Interaction& in, const Sur
 }
 inline void validate(const Dielectric& m, const MaterialCheck& c) {
     if (!(m.ior > 0 && std::isfinite(m.ior))) throw InputError(c.where + ": ior must be a finite number > 0");
-    if (c.exact && m.reflectance != ReflectanceModel::Fresnel)
+    if (c.exact && !carries_stokes(m))
         throw InputError(c.where + ": \"exact\" polarisation needs \"reflectance\": \"fresnel\" (the amplitudes)");
 }
 

@@ -29,6 +29,7 @@ inline bool dispersive(const Emissive&) { return false; }
 inline double band_index(const Emissive&, double, const CompatRules&) { return 0.0; }
 inline const spectrum::Absorption* absorption(const Emissive&) { return nullptr; }
 inline bool in_packets(const Emissive&) { return true; }
+inline bool carries_stokes(const Emissive&) { return true; }
 inline NodeRecord describe(const Emissive&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"emissive"};
 }

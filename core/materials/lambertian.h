@@ -35,6 +35,7 @@ inline bool dispersive(const Lambertian&) { return false; }
 inline double band_index(const Lambertian&, double, const CompatRules&) { return 0.0; }
 inline const spectrum::Absorption* absorption(const Lambertian&) { return nullptr; }
 inline bool in_packets(const Lambertian&) { return true; }
+inline bool carries_stokes(const Lambertian&) { return true; }
 inline NodeRecord describe(const Lambertian&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"diffuse"};
 }

@@ -37,6 +37,7 @@ inline bool dispersive(const Metal&) { return false; }
 inline double band_index(const Metal&, double, const CompatRules&) { return 0.0; }
 inline const spectrum::Absorption* absorption(const Metal&) { return nullptr; }
 inline bool in_packets(const Metal&) { return true; }
+inline bool carries_stokes(const Metal&) { return true; }
 inline NodeRecord describe(const Metal&, const Interaction& in, const SurfaceHit&, const Ray&, double) {
     NodeRecord r{"mirror"};
     r.R = in.reflectance;

@@ -18,6 +18,7 @@ struct Uniaxial {
     // The medium at wavelength λ (nm); at the sodium D line when λ <= 0 (an RGB ray).
     double n_o(double lambda_nm) const { return ordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
     double n_e(double lambda_nm) const { return extraordinary.n(lambda_nm > 0 ? lambda_nm : spectrum::fraunhofer::D); }
+    biref::Medium medium(double lambda_nm) const { return {n_o(lambda_nm), n_e(lambda_nm), optic_axis}; }
 
     static constexpr const char* kType = "uniaxial";
     static Uniaxial read(const JsonReader& r, const std::string& file);
@@ -49,6 +50,7 @@ inline bool dispersive(const Uniaxial&) { return true; }
 inline double band_index(const Uniaxial& m, double nm, const CompatRules&) { return m.n_o(nm); }
 inline const spectrum::Absorption* absorption(const Uniaxial&) { return nullptr; }
 inline bool in_packets(const Uniaxial&) { return false; }
+inline bool carries_stokes(const Uniaxial&) { return true; }
 // Double refraction, or total internal reflection when no beam is transmitted.
 inline NodeRecord describe(const Uniaxial&, const Interaction& in, const SurfaceHit&, const Ray&, double) {
     int transmitted = 0;

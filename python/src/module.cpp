@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <refract/core/image.h>
+#include <refract/core/integrators/integrator.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/core/trace_record.h>
@@ -184,7 +185,8 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
 // Interned keys: one dict per node, built as fast as Python builds its own.
 struct NodeKeys {
     py::object id, parent, depth, reflections, transmissions, origin, direction, weight, event, hit, length, point,
-        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength, stokes, stokes_x;
+        normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength, stokes, stokes_x,
+        wave, index, wave_normal;
     NodeKeys() {
         auto k = [](const char* s) { return py::reinterpret_steal<py::object>(PyUnicode_InternFromString(s)); };
         id = k("id"), parent = k("parent"), depth = k("depth"), reflections = k("reflections");
@@ -193,6 +195,7 @@ struct NodeKeys {
         object = k("object"), facet = k("facet"), facet_label = k("facet_label"), entering = k("entering");
         eta = k("eta"), cos_i = k("cos_i"), cos_t = k("cos_t"), Rs = k("Rs"), Rp = k("Rp"), R = k("R");
         light = k("light"), wavelength = k("wavelength"), stokes = k("stokes"), stokes_x = k("stokes_x");
+        wave = k("wave"), index = k("index"), wave_normal = k("wave_normal");
     }
 };
 
@@ -237,6 +240,10 @@ py::tuple trace_result(const TraceRecord& rec) {
         d[k.wavelength] = wl;
         d[k.stokes] = s.polarised ? py::object(py::make_tuple(s.stokes[0], s.stokes[1], s.stokes[2], s.stokes[3])) : none;
         d[k.stokes_x] = s.polarised ? py::object(tuple3(s.stokes_x)) : none;
+        const bool crystal = s.wave != biref::Wave::Isotropic;
+        d[k.wave] = crystal ? py::object(py::str(s.wave == biref::Wave::Ordinary ? "o" : "e")) : none;
+        d[k.index] = crystal && s.index > 0 ? py::object(py::float_(s.index)) : none;
+        d[k.wave_normal] = crystal && s.index > 0 ? py::object(tuple3(s.wave_normal)) : none;
         PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), d.release().ptr());
     }
     return py::make_tuple(nodes, tuple3(rec.radiance), wl);
@@ -247,19 +254,34 @@ double check_wavelength(const py::handle& w) {
     return w.cast<double>();
 }
 
-// None or "natural": natural light; a dict in the scene file's form of a light's
-// "polarisation" (or its type alone, as a string): that state.
-std::optional<PolarisationState> check_polarisation(const py::handle& p) {
-    if (p.is_none()) return std::nullopt;
+// How a trace walks: None, the camera's walk under the scene's own model; "natural", the
+// same with natural light whatever that model; a dict in the scene file's form of a
+// light's "polarisation" (or its type alone, as a string): light of that state.
+struct TraceModel {
+    std::optional<PolarisationState> state;
+    bool natural = false;
+};
+TraceModel check_polarisation(const py::handle& p) {
+    if (p.is_none()) return {};
     if (py::isinstance<py::str>(p)) {
         const std::string t = p.cast<std::string>();
-        if (t == "natural") return std::nullopt;
-        return parse_polarisation_state(nlohmann::json{{"type", t}}, "trace");
+        if (t == "natural") return {std::nullopt, true};
+        return {parse_polarisation_state(nlohmann::json{{"type", t}}, "trace"), false};
     }
     if (!py::isinstance<py::dict>(p))
         throw InputError("trace: polarisation must be None, \"natural\", a type name or a dict such as "
                          "{\"type\": \"linear\", \"angle\": 30}");
-    return parse_polarisation_state(to_json(p.cast<py::dict>(), "", "trace"), "trace");
+    return {parse_polarisation_state(to_json(p.cast<py::dict>(), "", "trace"), "trace"), false};
+}
+
+// `trace(scene, state)` with the scene as the model asks: a copy with natural light for "natural".
+template <class F>
+TraceRecord traced(const Scene& s, const TraceModel& m, F&& trace) {
+    if (!m.natural || polarisation_model(s) == PolarisationModel::Natural)
+        return trace(s, m.state ? &*m.state : nullptr);
+    Scene natural = s;
+    natural.settings.requested_polarisation = PolarisationModel::Natural;
+    return trace(natural, nullptr);
 }
 
 }  // namespace
@@ -286,7 +308,7 @@ PYBIND11_MODULE(_refract, m) {
                                })
         .def_property_readonly("spectral", [](const Scene& s) { return s.settings.spectral.enabled; })
         .def_property_readonly("polarisation", [](const Scene& s) {
-            return s.settings.polarisation == PolarisationModel::Exact ? "exact" : "natural";
+            return polarisation_model(s) == PolarisationModel::Exact ? "exact" : "natural";
         })
         .def("__repr__", [](const Scene& s) {
             return "<refract.Scene " + s.source + " " + std::to_string(s.camera.width) + "x" +
@@ -320,16 +342,20 @@ PYBIND11_MODULE(_refract, m) {
              const py::handle& polarisation) {
               const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
               const double nm = check_wavelength(wavelength);
-              const std::optional<PolarisationState> pol = check_polarisation(polarisation);
-              return trace_result(without_gil([&] { return trace_ray(s, Ray{o, d}, nm, pol ? &*pol : nullptr); }));
+              const TraceModel pol = check_polarisation(polarisation);
+              return trace_result(without_gil([&] {
+                  return traced(s, pol, [&](const Scene& sc, const PolarisationState* p) { return trace_ray(sc, Ray{o, d}, nm, p); });
+              }));
           },
           py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none(),
           py::arg("polarisation") = py::none());
     m.def("trace_pixel",
           [](const Scene& s, int i, int j, const py::handle& wavelength, const py::handle& polarisation) {
               const double nm = check_wavelength(wavelength);
-              const std::optional<PolarisationState> pol = check_polarisation(polarisation);
-              return trace_result(without_gil([&] { return trace_pixel(s, i, j, nm, pol ? &*pol : nullptr); }));
+              const TraceModel pol = check_polarisation(polarisation);
+              return trace_result(without_gil([&] {
+                  return traced(s, pol, [&](const Scene& sc, const PolarisationState* p) { return trace_pixel(sc, i, j, nm, p); });
+              }));
           },
           py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none(),
           py::arg("polarisation") = py::none());

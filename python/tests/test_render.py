@@ -79,7 +79,10 @@ def test_bad_render_options_raise_valueerror():
 
 
 def test_ctrl_c_interrupts_a_long_render_within_a_second():
-    s = refract.scene(sphere_scene(width=2000, height=1500, extra_render={"samples": 16, "jitter": True}))
+    # Natural light: the physical default, exact polarisation, first allocates the Stokes,
+    # DoLP and AoLP images (14 values per pixel, 340 MB here).
+    s = refract.scene(sphere_scene(width=2000, height=1500,
+                                   extra_render={"samples": 16, "jitter": True, "polarisation": "natural"}))
     timer = threading.Timer(0.3, _thread.interrupt_main)
     t0 = time.perf_counter()
     timer.start()

@@ -46,7 +46,9 @@ def test_each_node_carries_the_fresnel_terms_of_its_hit():
 
 
 def test_children_weights_are_the_parents_times_r_and_one_minus_r():
-    tree = refract.trace(lone_sphere(), [0, 0.4, -5], [0, 0, 1])
+    # Yasuda's eq. 7 at every node: the natural-light walk (the scene's own model, the
+    # physical mode's default, is exact polarisation, where a weight is C00 of a product).
+    tree = refract.trace(lone_sphere(), [0, 0.4, -5], [0, 0, 1], polarisation="natural")
     for node in tree[1:]:
         parent = tree[node["parent"]]
         R = parent["R"]
@@ -126,3 +128,24 @@ def test_a_polarised_ray_through_a_clear_sphere_conserves_energy(state):
     assert sum(n["stokes"][0] for n in leaves) == pytest.approx(1.0, abs=1e-12)
     assert all(n["stokes"][0] >= -1e-15 and math.sqrt(sum(x * x for x in n["stokes"][1:])) <= n["stokes"][0] + 1e-12
                for n in tree)
+
+
+def test_segments_inside_calcite_name_their_wave_and_index():
+    a = math.radians(45)
+    s = refract.scene({
+        "camera": {"location": [0, 3, -3], "look_at": [0, 0.3, 0], "width": 4, "height": 3},
+        "materials": {"calcite": {"type": "uniaxial", "crystal": "calcite", "optic_axis": [math.sin(a), math.cos(a), 0]}},
+        "objects": [{"type": "polyhedron", "name": "slab", "material": "calcite",
+                     "planes": [[1, 0, 0, 1], [-1, 0, 0, 1], [0, 0, 1, 1], [0, 0, -1, 1], [0, 1, 0, 0.55], [0, -1, 0, -0.05]]}],
+        "render": {"spectral": False, "max_depth": 3},
+    })
+    tree = refract.trace(s, [0.1, 2, 0.2], [0, -1, 0])
+    inside = {n["wave"]: n for n in tree if n["parent"] == 0 and n["wave"] is not None}
+    assert set(inside) == {"o", "e"}
+    no, ne = inside["o"]["index"], 1.48613  # calcite at the D line (Ghosh 1999): n_o 1.65834
+    assert no == pytest.approx(1.65834, abs=2e-5)
+    # Normal incidence: the e wave's normal is the slab's, at 45 degrees to the optic axis.
+    ne45 = no * ne / math.sqrt(ne ** 2 * math.cos(a) ** 2 + no ** 2 * math.sin(a) ** 2)
+    assert inside["e"]["index"] == pytest.approx(ne45, abs=2e-5)
+    assert inside["e"]["wave_normal"] == pytest.approx((0, -1, 0), abs=1e-12)
+    assert all(n["wave"] is None and n["index"] is None for n in tree if n["parent"] == -1)
