@@ -17,7 +17,6 @@ namespace refract {
 namespace {
 
 constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-format.md)
-constexpr double kMaxLightColour = 1e30;  // light colours, environment radiance and scale
 constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{64} << 20;  // a scene file
 
 using nlohmann::json;
@@ -85,14 +84,12 @@ Background parse_environment(const JsonReader& r, const std::string& file) {
     b.kind = Background::Kind::Environment;
     if (r.has("color") == r.has("map")) r.fail("an environment needs either \"color\" or \"map\"");
     if (r.has("color")) {
-        b.color = r.vec3("color");
-        for (int k = 0; k < 3; ++k)
-            if (!(b.color[k] >= 0 && b.color[k] <= kMaxLightColour)) r.fail_at("color", "components must be in [0, 1e30]");
+        b.color = r.colour("color", b.color);
     } else {
         b.map = read_environment_map(r, file);
     }
     b.scale = r.positive("scale", b.scale);
-    if (!(b.scale <= kMaxLightColour)) r.fail_at("scale", "must be in (0, 1e30]");
+    if (!(b.scale <= kMaxColour)) r.fail_at("scale", "must be in (0, 1e30]");
     b.rotation_deg = r.number("rotation_deg", b.rotation_deg);
     return b;
 }
@@ -100,7 +97,7 @@ Background parse_environment(const JsonReader& r, const std::string& file) {
 Background parse_background(const json& v, const std::string& file) {
     Background b;
     if (v.is_array()) {
-        b.color = JsonReader::vec3_value(v, file, "/background");
+        b.color = JsonReader::colour_value(v, file, "/background");
         return b;
     }
     JsonReader r(v, file, "/background");
@@ -108,11 +105,11 @@ Background parse_background(const json& v, const std::string& file) {
     if (type == "environment") return parse_environment(r, file);
     r.only({"type", "color", "top", "bottom"});
     if (type == "solid") {
-        b.color = r.vec3("color", b.color);
+        b.color = r.colour("color", b.color);
     } else if (type == "gradient") {
         b.kind = Background::Kind::Gradient;
-        b.top = r.vec3("top", b.top);
-        b.bottom = r.vec3("bottom", b.bottom);
+        b.top = r.colour("top", b.top);
+        b.bottom = r.colour("bottom", b.bottom);
     } else {
         r.fail_at("type", "unknown background type '" + type + "' (solid, gradient, environment)");
     }
@@ -483,12 +480,9 @@ Scene parse_scene(const json& j, const std::string& file) {
             } else {
                 l.fail_at("type", "unknown light type '" + type + "' (point, directional, beam)");
             }
-            light.color = l.vec3("color", Vec3(1, 1, 1));
             // Colours scale every sum of the render: negative or astronomically large ones
             // would give negative or infinite pixels.
-            for (int c = 0; c < 3; ++c)
-                if (!(light.color[c] >= 0 && light.color[c] <= kMaxLightColour))
-                    l.fail_at("color", "components must be in [0, 1e30]");
+            light.color = l.colour("color", Vec3(1, 1, 1));
             if (l.has("polarisation")) light.polarisation = parse_polarisation_state(l.child("polarisation"), true);
             if (l.has("spectrum")) light.spectrum = spectrum::parse_light_spectrum(l.raw("spectrum"), file + ": " + l.path_of("spectrum"));
             s.lights.push_back(light);
