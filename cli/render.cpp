@@ -57,9 +57,10 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         opt.trace.facet_local = !args->full_plane_loop;
         opt.trace.packets = !args->no_lanes;
         const auto result = refract::render(scene, opt);
-        refract::write_image(args->output, result.image, {args->linear16});
+        refract::write_image(args->output, result.image, {args->linear16, result.signed_colours});
         if (result.polarisation)
-            refract::write_polarisation(args->output, result.image.width, result.image.height, *result.polarisation);
+            refract::write_polarisation(args->output, result.image.width, result.image.height, *result.polarisation,
+                                        result.signed_colours);
         if (args->spectral) {
             const std::filesystem::path p(args->output);
             std::vector<std::string> names;

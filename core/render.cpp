@@ -134,6 +134,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     const std::unique_ptr<Integrator> integrator = make_integrator(tracer, spectral);
     const int W = scene.camera.width, H = scene.camera.height;
     RenderResult result{Image(W, H), {}, {}, {}, {}, std::nullopt};
+    result.signed_colours = spectral && scene.settings.spectral.pipeline == spectrum::ColourPipeline::XyzSrgb;
     if (opt.lost_energy) result.lost.assign(3 * static_cast<size_t>(W) * H, 0.0);
     if (opt.spectral_channels) {
         result.wavelengths = spectral->wavelengths;
