@@ -9,8 +9,9 @@
 #                           their tests in build-sanitize/, and those tests
 #                           (part of `test`; REFRACT_SKIP_SANITIZE=1 leaves it out)
 #   bash run.sh fuzz [S]    build the libFuzzer target (clang, ASan, UBSan) in build-fuzz/ and
-#                           fuzz the scene reader and a tiny render for S seconds (60); its
-#                           build is part of `test`, so that it cannot rot
+#                           fuzz the scene reader, a tiny render and its files for S seconds
+#                           (60); `test` builds it too and runs it for 20 s, so that neither
+#                           the target nor its oracle can rot
 #                           (REFRACT_SKIP_FUZZ_BUILD=1 leaves it out)
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -46,14 +47,37 @@ sanitize() {
 # The libFuzzer target (clang; geometry/ and core/ instrumented for it and built with
 # AddressSanitizer and UndefinedBehaviorSanitizer): `fuzz_build DIR TYPE` builds it in DIR
 # with CMAKE_BUILD_TYPE TYPE. The test path builds it unoptimised and without debug
-# information in build-fuzz-check/ (that it still compiles and links with clang, quickly);
-# `fuzz` builds and runs it optimised. Clang and its runtime libraries are installed only here.
+# information in build-fuzz-check/ (that it still compiles and links with clang, quickly)
+# and runs it briefly (fuzz_check); `fuzz` builds and runs it optimised. Clang and its
+# runtime libraries are installed only here.
 fuzz_build() {
     PACKAGES+=(clang libclang-rt-14-dev)
     install_missing
     CXX=clang++ cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE="$2" -DREFRACT_FUZZ=ON \
         -DREFRACT_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
     cmake --build "$1" -j "$(nproc)" --target scene_fuzzer
+}
+
+# `fuzz_run DIR SECONDS SEEDS...`: the fuzzer built in DIR for SECONDS (the seeds are all
+# run first, however long they take), its corpus in DIR/corpus, a failing input written to
+# DIR/findings/; it fails on one.
+fuzz_run() {
+    local dir="$1" seconds="$2"
+    shift 2
+    mkdir -p "$dir/corpus" "$dir/findings"
+    "./$dir/fuzz/scene_fuzzer" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
+        -artifact_prefix="$dir/findings/" "$dir/corpus" "$@"
+}
+
+# The test path's short run of the unoptimised target: a fresh corpus, every seed but the
+# 1998 diamond (whose exact cut and polyhedron take minutes unoptimised), 20 s.
+fuzz_check() {
+    fuzz_build build-fuzz-check Debug
+    rm -rf build-fuzz-check/corpus build-fuzz-check/seeds
+    mkdir -p build-fuzz-check/seeds
+    cp scenes/examples/*.json scenes/validation/*.json fuzz/seeds/*.json build-fuzz-check/seeds/
+    rm build-fuzz-check/seeds/ohtsuka1998-diamond.json
+    fuzz_run build-fuzz-check 20 build-fuzz-check/seeds
 }
 
 build() {
@@ -73,7 +97,7 @@ case "${1:-}" in
         build
         ctest --test-dir build --output-on-failure -j "$(nproc)"
         [ "${REFRACT_SKIP_SANITIZE:-0}" = 1 ] || sanitize
-        [ "${REFRACT_SKIP_FUZZ_BUILD:-0}" = 1 ] || fuzz_build build-fuzz-check Debug
+        [ "${REFRACT_SKIP_FUZZ_BUILD:-0}" = 1 ] || fuzz_check
         ;;
     sanitize)
         install_missing
@@ -85,9 +109,7 @@ case "${1:-}" in
         ;;
     fuzz)
         fuzz_build build-fuzz RelWithDebInfo
-        mkdir -p build-fuzz/corpus build-fuzz/findings
-        ./build-fuzz/fuzz/scene_fuzzer -max_total_time="${2:-60}" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
-            -artifact_prefix=build-fuzz/findings/ build-fuzz/corpus scenes/examples scenes/validation
+        fuzz_run build-fuzz "${2:-60}" scenes/examples scenes/validation fuzz/seeds
         ;;
     *)
         echo "usage: bash run.sh reproduce|test|build|sanitize|fuzz [SECONDS]" >&2

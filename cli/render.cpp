@@ -33,10 +33,10 @@ std::string sidecar(const std::string& output, const std::string& suffix) {
 // Writes the image and its sidecars, appending each path to `done` once it is written.
 void write_outputs(const RenderArgs& args, const refract::RenderResult& result, std::vector<std::string>& done) {
     const int w = result.image.width, h = result.image.height;
-    refract::write_image(args.output, result.image, {args.linear16});
+    refract::write_image(args.output, result.image, {args.linear16, result.signed_colours});
     done.push_back(args.output);
     if (result.polarisation)
-        for (const auto& p : refract::write_polarisation(args.output, w, h, *result.polarisation)) done.push_back(p);
+        for (const auto& p : refract::write_polarisation(args.output, w, h, *result.polarisation, result.signed_colours)) done.push_back(p);
     if (args.spectral) {
         std::vector<std::string> names;
         std::string list;

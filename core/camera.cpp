@@ -8,8 +8,8 @@ Camera::Basis Camera::basis() const {
     // POV-Ray Parse_Camera with look_at: D̂ = normalize(look_at − location),
     // R = |right|·normalize(sky × D̂), U = |up|·(D̂ × R̂), right = x·W/H, up = y.
     const double aspect = static_cast<double>(width) / height;
-    const Vec3 d = (look_at - location).normalized();
-    const Vec3 r = sky.cross(d).normalized();
+    const Vec3 d = unit_vector(look_at - location).value_or(Vec3::Zero());
+    const Vec3 r = unit_vector(sky.cross(d)).value_or(Vec3::Zero());
     const Vec3 u = d.cross(r);
     Basis b;
     if (type == Type::Perspective) {

@@ -47,7 +47,7 @@ struct Geometry {
     double cell_scale = 0;
 
     explicit Geometry(const FarFieldSettings& s)
-        : binning(s.binning), w(s.axis.normalized()), nphi(s.azimuth_bins), ncos(s.polar_bins), nangle(s.angle_bins) {
+        : binning(s.binning), w(unit_vector(s.axis).value_or(Vec3::Zero())), nphi(s.azimuth_bins), ncos(s.polar_bins), nangle(s.angle_bins) {
         if (binning == FarFieldSettings::Binning::Axis) {
             for (int k = 1; k < nangle; ++k) cos_edges.push_back(-std::cos(M_PI * k / nangle));
             const int ncells = std::clamp(16 * nangle, 64, 1 << 16);
@@ -60,7 +60,8 @@ struct Geometry {
                 cell_first[static_cast<size_t>(i)] = static_cast<std::int32_t>(k);
             }
         }
-        Vec3 r = s.reference - s.reference.dot(w) * w;
+        const Vec3 ref = rescaled(s.reference);
+        Vec3 r = ref - ref.dot(w) * w;
         if (r.norm() < 1e-9) r = (std::abs(w.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)) - w * (std::abs(w.x()) < 0.9 ? w.x() : w.y());
         u = r.normalized();
         v = w.cross(u);
@@ -97,7 +98,7 @@ void check(const FarFieldSettings& s) {
             throw InputError(std::string("far field: ") + name + " must be in [1, " + std::to_string(max) + "], got " +
                              std::to_string(n));
     };
-    if (!s.axis.allFinite() || !(s.axis.norm() > 0)) throw InputError("far field: the axis must be a finite, non-zero vector");
+    if (!unit_vector(s.axis)) throw InputError("far field: the axis must be a finite, non-zero vector");
     if (!s.reference.allFinite()) throw InputError("far field: the reference must be finite");
     positive_count(s.azimuth_bins, "azimuth bins", 1 << 14);
     positive_count(s.polar_bins, "polar bins", 1 << 14);
@@ -236,7 +237,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
     const auto t0 = std::chrono::steady_clock::now();
     FarFieldResult r;
     r.settings = settings;
-    r.settings.axis = settings.axis.normalized();
+    r.settings.axis = *unit_vector(settings.axis);
     // The spectral context of the scene (its limits), with the runs' wavelengths and every
     // material's index at each of them.
     Scene scene = scene_in;

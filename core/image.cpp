@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <limits>
+#include <stdexcept>
 #include <unistd.h>
 
 #include <refract/core/image_io.h>
@@ -35,6 +37,28 @@ void write_atomically(const std::string& path, int width, int height, int nchann
                       const std::vector<std::string>& names = {}, const std::string& colorspace = {},
                       const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
+// What is written is checked value by value, as stored, before anything is converted:
+// finite (for the float formats, as a float: 1e300 would be written as infinity, and the
+// conversion itself is undefined), and >= 0 once stored unless the channel may be negative
+// (`is_signed`, per channel). A value that fails is refract's own error (scenes are
+// checked on loading so that none can arise): reported naming the pixel and the channel,
+// before anything is written.
+void check_written(const std::string& path, int width, const std::vector<std::string>& names,
+                   const std::vector<bool>& is_signed, const std::vector<double>& values, bool as_float) {
+    const size_t nc = names.size();
+    for (size_t k = 0; k < values.size(); ++k) {
+        const double v = values[k];
+        const bool finite = std::isfinite(v) && (!as_float || std::fabs(v) <= std::numeric_limits<float>::max());
+        const double stored = finite && as_float ? static_cast<double>(static_cast<float>(v)) : v;
+        if (finite && (is_signed[k % nc] || !(stored < 0))) continue;
+        const size_t pixel = k / nc;
+        throw std::runtime_error("internal error: " + path + ": pixel (" + std::to_string(pixel % width) + ", " +
+                                 std::to_string(pixel / width) + ") channel " + names[k % nc] + " is " +
+                                 format_value(v) + (finite ? ", negative" : ", not finite as stored") +
+                                 "; nothing was written; please report it");
+    }
+}
+
 }  // namespace
 
 void check_image_path(const std::string& path) {
@@ -60,11 +84,18 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
     const std::string ext = lower_extension(path);
     const bool linear_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
     const size_t n = img.rgb.size();
+    const std::vector<std::string> names{"R", "G", "B"};
     if (linear_float) {
+        check_written(path, img.width, names, std::vector<bool>(3, opt.signed_values), img.rgb, true);
         std::vector<float> buf(n);
         for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(img.rgb[k]);
         write_atomically(path, img.width, img.height, 3, PixelType::float32, buf.data());
-    } else if (ext == ".png" && opt.linear16) {
+        return;
+    }
+    // The integer formats clamp to [0, 1] (negative values are written as 0): only a value
+    // that is not finite is an error there.
+    check_written(path, img.width, names, std::vector<bool>(3, true), img.rgb, false);
+    if (ext == ".png" && opt.linear16) {
         std::vector<unsigned short> buf(n);
         for (size_t k = 0; k < n; ++k)
             buf[k] = static_cast<unsigned short>(std::lround(std::clamp(img.rgb[k], 0.0, 1.0) * 65535.0));
@@ -79,12 +110,17 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
 
 void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
                     const std::vector<double>& data,
-                    const std::vector<std::pair<std::string, std::string>>& attributes) {
+                    const std::vector<std::pair<std::string, std::string>>& attributes,
+                    const std::vector<std::string>& signed_channels) {
     if (lower_extension(path) != ".exr") throw InputError(path + ": named channels need an .exr file");
     check_image_path(path);
     const size_t n = static_cast<size_t>(width) * height * names.size();
     if (width <= 0 || height <= 0 || names.empty() || data.size() != n)
         throw InputError(path + ": channel data do not match the image size");
+    std::vector<bool> is_signed(names.size());
+    for (size_t c = 0; c < names.size(); ++c)
+        is_signed[c] = std::find(signed_channels.begin(), signed_channels.end(), names[c]) != signed_channels.end();
+    check_written(path, width, names, is_signed, data, true);
     std::vector<float> buf(n);
     for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(data[k]);
     write_atomically(path, width, height, static_cast<int>(names.size()), PixelType::float32, buf.data(), names, {},

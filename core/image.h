@@ -30,10 +30,16 @@ struct Image {
 
 struct WriteOptions {
     bool linear16 = false;  // .png only: 16-bit linear instead of 8-bit sRGB
+    // The values may be negative (the xyz-srgb pipeline's colours out of the sRGB gamut).
+    bool signed_values = false;
 };
 
 // Writes to a temporary name beside `path`, then renames: never a half-written file.
-// Throws InputError naming the path on failure (unknown extension, unwritable).
+// Throws InputError naming the path on failure (unknown extension, unwritable). What is
+// written is checked first: every value finite as stored (a float for .exr/.hdr/.tif, where
+// 1e300 would be infinity), and, for the float formats, >= 0 unless `signed_values` (the
+// integer formats clamp to [0, 1]); a value that fails throws std::runtime_error, an
+// internal error naming the pixel and the channel, and nothing is written.
 void write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
 
 // Checks, before any work, that an image can be written at `path`: a known extension this
@@ -42,11 +48,14 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
 void check_image_path(const std::string& path);
 
 // A float OpenEXR file with the given channel names; `data` interleaved, row-major
-// (names.size() values per pixel). Atomic like write_image.
+// (names.size() values per pixel). Atomic like write_image, checked like it: every value
+// finite as a float, and >= 0 except in the channels named in `signed_channels` (Stokes
+// S1–S3, angles, colours of a signed pipeline).
 // `attributes`: string metadata (name, value) stored in the file's header.
 void write_channels(const std::string& path, int width, int height, const std::vector<std::string>& names,
                     const std::vector<double>& data,
-                    const std::vector<std::pair<std::string, std::string>>& attributes = {});
+                    const std::vector<std::pair<std::string, std::string>>& attributes = {},
+                    const std::vector<std::string>& signed_channels = {});
 
 // Every channel of an image with its names and its header's string attributes (data
 // interleaved, row-major). Throws InputError naming the path.

@@ -92,6 +92,22 @@ Vec3 JsonReader::vec3(const std::string& key, const Vec3& fallback) const {
     return has(key) ? vec3(key) : fallback;
 }
 
+Vec3 JsonReader::colour_value(const nlohmann::json& v, const std::string& file, const std::string& path) {
+    const Vec3 c = vec3_value(v, file, path);
+    for (int k = 0; k < 3; ++k)
+        if (!(c[k] >= 0 && c[k] <= kMaxColour))
+            throw InputError(file + ": " + path + ": components must be in [0, 1e30] (got " + format_value(c[k]) + ")");
+    return c;
+}
+Vec3 JsonReader::colour(const std::string& key, const Vec3& fallback) const {
+    return has(key) ? colour_value(raw(key), file_, path_of(key)) : fallback;
+}
+double JsonReader::coefficient(const std::string& key, double fallback) const {
+    const double x = number(key, fallback);
+    if (!(x >= 0 && x <= kMaxColour)) fail_at(key, "must be in [0, 1e30] (got " + format_value(x) + ")");
+    return x;
+}
+
 void JsonReader::only(const std::set<std::string>& allowed) const {
     if (!j_.is_object()) return;
     for (const auto& [key, value] : j_.items()) {

@@ -11,6 +11,11 @@
 
 namespace refract {
 
+// Every colour, radiance and coefficient of a scene (light and material colours, filters,
+// background, ambient, diffuse): in [0, 1e30], so that none is negative and each stays far
+// inside a float's range (docs/limits.md).
+constexpr double kMaxColour = 1e30;
+
 class JsonReader {
 public:
     JsonReader(const nlohmann::json& j, std::string file, std::string path);
@@ -37,6 +42,10 @@ public:
     Vec3 vec3(const std::string& key) const;
     Vec3 vec3(const std::string& key, const Vec3& fallback) const;
     static Vec3 vec3_value(const nlohmann::json& v, const std::string& file, const std::string& path);
+    // A colour: components in [0, kMaxColour]; a coefficient: a number in [0, kMaxColour].
+    Vec3 colour(const std::string& key, const Vec3& fallback) const;
+    double coefficient(const std::string& key, double fallback) const;
+    static Vec3 colour_value(const nlohmann::json& v, const std::string& file, const std::string& path);
 
     // Throws on any field not in `allowed` (checks typos such as "raduis").
     void only(const std::set<std::string>& allowed) const;

@@ -14,8 +14,9 @@ namespace refract {
 // The three paths for IMAGE.ext.
 std::vector<std::string> polarisation_paths(const std::string& image_path);
 
-// Writes them (atomically each); returns their paths.
+// Writes them (atomically each); returns their paths. S1–S3 and the angle may be negative,
+// S0 too with `signed_colours` (RenderResult::signed_colours); every other value must be >= 0.
 std::vector<std::string> write_polarisation(const std::string& image_path, int width, int height,
-                                            const PolarisationImages& p);
+                                            const PolarisationImages& p, bool signed_colours = false);
 
 }  // namespace refract

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -143,6 +144,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     const std::unique_ptr<Integrator> integrator = make_integrator(tracer, spectral);
     const int W = scene.camera.width, H = scene.camera.height;
     RenderResult result{Image(W, H), {}, {}, {}, {}, std::nullopt};
+    result.signed_colours = spectral && scene.settings.spectral.pipeline == spectrum::ColourPipeline::XyzSrgb;
     if (opt.lost_energy) result.lost.assign(3 * static_cast<size_t>(W) * H, 0.0);
     if (opt.spectral_channels) {
         result.wavelengths = spectral->wavelengths;
@@ -220,6 +222,19 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 throw std::runtime_error("internal error: " + (scene.source.empty() ? std::string("scene") : scene.source) +
                                          ": pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                                          ") is not finite; please report it with the scene");
+    // Colours of up to 1e30 each can still multiply past what an image file holds (a light
+    // of 1e30 on a pigment of 1e30): bad input, known only now.
+    const auto within_float = [&](const std::vector<double>& v, size_t per_pixel, const std::string& what) {
+        for (size_t k = 0; k < v.size(); ++k)
+            if (std::fabs(v[k]) > std::numeric_limits<float>::max())
+                throw InputError((scene.source.empty() ? std::string("scene") : scene.source) + ": " + what + " (" +
+                                 std::to_string(k / per_pixel % W) + ", " + std::to_string(k / per_pixel / W) + ") is " +
+                                 format_value(v[k]) + ", past the largest value an image file holds (3.4e38): the "
+                                 "scene's colours (each in [0, 1e30]) multiply beyond it");
+    };
+    within_float(result.image.rgb, 3, "pixel");
+    if (!result.spectral.empty()) within_float(result.spectral, result.wavelengths.size(), "the spectral channels of pixel");
+    if (result.polarisation) within_float(result.polarisation->stokes, 12, "the Stokes vector of pixel");
     return result;
 }
 

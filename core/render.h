@@ -66,6 +66,9 @@ struct RenderResult {
     // (nm), the samples averaged; wavelengths.size() values per pixel.
     std::vector<double> wavelengths, spectral;
     std::optional<PolarisationImages> polarisation;
+    // The colours (the image, Stokes S0) may be negative: a spectral render's xyz-srgb
+    // pipeline keeps colours out of the sRGB gamut (docs/spectra.md). Its writers allow them.
+    bool signed_colours = false;
 };
 
 // Validates the scene (throws InputError) and renders it.

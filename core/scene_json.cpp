@@ -17,7 +17,6 @@ namespace refract {
 namespace {
 
 constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-format.md)
-constexpr double kMaxLightColour = 1e30;  // light colours, environment radiance and scale
 
 using nlohmann::json;
 
@@ -39,7 +38,10 @@ Camera parse_camera(const JsonReader& r) {
     if ((c.look_at - c.location).norm() == 0) r.fail_at("look_at", "must differ from location");
     if (!std::isfinite((c.look_at - c.location).norm()) || !(c.location.norm() < 1e150) || !(c.look_at.norm() < 1e150))
         r.fail_at("location", "the camera's location and look_at must lie within 1e150 of the origin (rays would overflow)");
-    if (c.sky.cross(c.look_at - c.location).norm() == 0) r.fail_at("sky", "must not be parallel to the view direction");
+    // Rescaled (geometry/ray.h): a sky of 1e200 neither overflows nor turns into zero.
+    if (rescaled(c.sky).cross(rescaled(c.look_at - c.location)).norm() == 0)
+        r.fail_at("sky", "must not be parallel to the view direction");
+    c.sky = rescaled(c.sky);
     // A field that does not apply to the camera's type is refused, not ignored.
     if (c.type == Camera::Type::Perspective && r.has("ortho_height"))
         r.fail_at("ortho_height", "applies to an orthographic camera only (this one is perspective)");
@@ -81,14 +83,12 @@ Background parse_environment(const JsonReader& r, const std::string& file) {
     b.kind = Background::Kind::Environment;
     if (r.has("color") == r.has("map")) r.fail("an environment needs either \"color\" or \"map\"");
     if (r.has("color")) {
-        b.color = r.vec3("color");
-        for (int k = 0; k < 3; ++k)
-            if (!(b.color[k] >= 0 && b.color[k] <= kMaxLightColour)) r.fail_at("color", "components must be in [0, 1e30]");
+        b.color = r.colour("color", b.color);
     } else {
         b.map = read_environment_map(r, file);
     }
     b.scale = r.positive("scale", b.scale);
-    if (!(b.scale <= kMaxLightColour)) r.fail_at("scale", "must be in (0, 1e30]");
+    if (!(b.scale <= kMaxColour)) r.fail_at("scale", "must be in (0, 1e30]");
     b.rotation_deg = r.number("rotation_deg", b.rotation_deg);
     return b;
 }
@@ -96,7 +96,7 @@ Background parse_environment(const JsonReader& r, const std::string& file) {
 Background parse_background(const json& v, const std::string& file) {
     Background b;
     if (v.is_array()) {
-        b.color = JsonReader::vec3_value(v, file, "/background");
+        b.color = JsonReader::colour_value(v, file, "/background");
         return b;
     }
     JsonReader r(v, file, "/background");
@@ -104,11 +104,11 @@ Background parse_background(const json& v, const std::string& file) {
     if (type == "environment") return parse_environment(r, file);
     r.only({"type", "color", "top", "bottom"});
     if (type == "solid") {
-        b.color = r.vec3("color", b.color);
+        b.color = r.colour("color", b.color);
     } else if (type == "gradient") {
         b.kind = Background::Kind::Gradient;
-        b.top = r.vec3("top", b.top);
-        b.bottom = r.vec3("bottom", b.bottom);
+        b.top = r.colour("top", b.top);
+        b.bottom = r.colour("bottom", b.bottom);
     } else {
         r.fail_at("type", "unknown background type '" + clip_echo(type) + "' (solid, gradient, environment)");
     }
@@ -183,9 +183,9 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
     }
     if (type == "plane") {
         o.only({"type", "name", "material", "normal", "offset"});
-        const Vec3 n = o.vec3("normal");
-        if (n.norm() == 0) o.fail_at("normal", "must be non-zero");
-        return Plane{n.normalized(), o.number("offset", 0.0) };
+        const auto n = unit_vector(o.vec3("normal"));
+        if (!n) o.fail_at("normal", "must be non-zero");
+        return Plane{*n, o.number("offset", 0.0)};
     }
     if (type == "mesh") {
         o.only({"type", "name", "material", "vertices", "triangles"});
@@ -225,8 +225,11 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
             for (size_t q = 0; ok && q < 4; ++q) ok = p[q].is_number() && std::isfinite(p[q].get<double>());
             if (!ok) o.fail("plane " + path + " must be [nx, ny, nz, d] with finite numbers");
             const Vec3 n(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-            if (n.norm() == 0) o.fail("plane " + path + " has a zero normal");
-            c.planes.push_back(Plane{n.normalized(), p[3].get<double>() / n.norm()});
+            const auto unit = unit_vector(n);
+            if (!unit) o.fail("plane " + path + " has a zero normal");
+            const double offset = over_norm(p[3].get<double>(), n);
+            if (!std::isfinite(offset)) o.fail("plane " + path + ": d/|n| overflows (a plane beyond any scene)");
+            c.planes.push_back(Plane{*unit, offset});
         }
         if (o.has("labels")) {
             const auto& ls = o.raw("labels");
@@ -320,9 +323,9 @@ PolarisationState parse_polarisation_state(const JsonReader& r, bool reference) 
     p.angle_deg = r.number("angle", 0.0);
     if (!std::isfinite(p.angle_deg)) r.fail_at("angle", "must be a finite number of degrees");
     if (reference) {
-        p.reference = r.vec3("reference", p.reference);
-        if (!(p.reference.norm() > 0) || !p.reference.allFinite()) r.fail_at("reference", "must be a non-zero vector");
-        p.reference.normalize();
+        const auto unit = unit_vector(r.vec3("reference", p.reference));
+        if (!unit) r.fail_at("reference", "must be a non-zero vector");
+        p.reference = *unit;
     }
     const std::string hand = r.string("handedness", "left");
     if (hand == "left") p.handedness = 1;
@@ -452,9 +455,9 @@ Scene parse_scene(const json& j, const std::string& file) {
             const std::string type = l.string("type", "point");
             Light light;
             const auto direction = [&] {
-                const Vec3 d = l.vec3("direction");
-                if (!(d.norm() > 0) || !d.allFinite()) l.fail_at("direction", "must be a finite, non-zero vector");
-                return Vec3(d.normalized());
+                const auto d = unit_vector(l.vec3("direction"));
+                if (!d) l.fail_at("direction", "must be a finite, non-zero vector");
+                return *d;
             };
             if (type == "point") {
                 l.only({"type", "position", "color", "polarisation", "spectrum"});
@@ -477,12 +480,9 @@ Scene parse_scene(const json& j, const std::string& file) {
             } else {
                 l.fail_at("type", "unknown light type '" + clip_echo(type) + "' (point, directional, beam)");
             }
-            light.color = l.vec3("color", Vec3(1, 1, 1));
             // Colours scale every sum of the render: negative or astronomically large ones
             // would give negative or infinite pixels.
-            for (int c = 0; c < 3; ++c)
-                if (!(light.color[c] >= 0 && light.color[c] <= kMaxLightColour))
-                    l.fail_at("color", "components must be in [0, 1e30]");
+            light.color = l.colour("color", Vec3(1, 1, 1));
             if (l.has("polarisation")) light.polarisation = parse_polarisation_state(l.child("polarisation"), true);
             if (l.has("spectrum")) light.spectrum = spectrum::parse_light_spectrum(l.raw("spectrum"), file + ": " + l.path_of("spectrum"));
             s.lights.push_back(light);

@@ -145,7 +145,8 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
         throw InputError(f + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
                          std::to_string(static_cast<int>(spectrum::kMinWavelength)) + ", " +
                          std::to_string(static_cast<int>(spectrum::kMaxWavelength)) + "] nm");
-    if (!ray.origin.allFinite() || !ray.dir.allFinite() || !(ray.dir.norm() > 0))
+    const auto unit = unit_vector(ray.dir);
+    if (!ray.origin.allFinite() || !unit)
         throw InputError(f + ": the ray needs a finite origin and a finite, non-zero direction");
     TraceRecord rec;
     rec.wavelength_nm = wavelength_nm;
@@ -162,7 +163,7 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
     limits.max_reflections = scene.settings.spectral.max_reflections.value_or(TreeLimits::kUnlimited);
     limits.max_transmissions = scene.settings.spectral.max_transmissions.value_or(TreeLimits::kUnlimited);
     // A unit direction is kept as it is (a camera ray traces as it renders).
-    const Vec3 dir = std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : Vec3(ray.dir.normalized());
+    const Vec3 dir = std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : *unit;
     const auto walk = [&](auto payload) {
         using P = decltype(payload);
         RayTreeWalkerT<P> walker(tracer, limits, stats);

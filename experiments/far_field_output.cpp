@@ -186,7 +186,9 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldT
     written.push_back("far_field.csv");
     write_csv(dir + "/far_field_summary.csv", t.balance);
     written.push_back("far_field_summary.csv");
-    write_channels(dir + "/far_field.exr", t.map_width, t.map_height, t.channels, t.map, t.attributes);
+    // The colour (xyz-srgb, out of the sRGB gamut) and S1–S3 may be negative.
+    write_channels(dir + "/far_field.exr", t.map_width, t.map_height, t.channels, t.map, t.attributes,
+                   {"R", "G", "B", "S1", "S2", "S3"});
     written.push_back("far_field.exr");
     // The figure: intensity against θ per class, averaged over the wavelengths.
     if (opt.plot && gnuplot_available()) {

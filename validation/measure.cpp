@@ -97,9 +97,9 @@ std::vector<AngleBin> angle_histogram(const Channels& map, const std::string& na
     s.reference = parse_vec3(map, name, "refract:far_field_reference");
     s.azimuth_bins = map.width;
     s.polar_bins = map.height;
-    Vec3 a = axis.value_or(s.axis);
-    if (!a.allFinite() || !(a.norm() > 0)) throw InputError(name + ": the axis must be a finite, non-zero vector");
-    a.normalize();
+    const auto unit = unit_vector(axis.value_or(s.axis));
+    if (!unit) throw InputError(name + ": the axis must be a finite, non-zero vector");
+    const Vec3 a = *unit;
     const size_t nc = map.names.size();
     const double pixel_omega = 4.0 * M_PI / (static_cast<double>(map.width) * map.height);
     std::vector<AngleBin> out(static_cast<size_t>(bins));

@@ -102,7 +102,7 @@ inline Dielectric Dielectric::read(const JsonReader& r, const std::string& file)
     } else if (r.has("reflectivity")) {
         r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
     }
-    m.filter = r.vec3("filter", m.filter);
+    m.filter = r.colour("filter", m.filter);
     if (r.has("dispersion")) {
         m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
         // One index: the dispersion model's. A stated `ior` must agree with it: exactly for

@@ -14,7 +14,7 @@ struct Diffuse {
     static constexpr const char* kType = "diffuse";
     static Diffuse read(const JsonReader& r, const std::string&) {
         r.only({"type", "color", "checker", "diffuse", "ambient"});
-        return Diffuse{read_pigment(r), r.number("diffuse", 1.0), r.number("ambient", 0.0)};
+        return Diffuse{read_pigment(r), r.coefficient("diffuse", 1.0), r.coefficient("ambient", 0.0)};
     }
 };
 

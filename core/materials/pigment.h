@@ -18,16 +18,15 @@ struct Pigment {
     std::optional<Checker> checker;
 };
 
-// {"color": [r, g, b], "checker": {"color2": [r, g, b], "size": s}} (components >= 0).
+// {"color": [r, g, b], "checker": {"color2": [r, g, b], "size": s}} (colours: components
+// in [0, 1e30], JsonReader::colour).
 inline Pigment read_pigment(const JsonReader& r) {
     Pigment p;
-    p.color = r.vec3("color", p.color);
-    for (int k = 0; k < 3; ++k)
-        if (p.color[k] < 0) r.fail_at("color", "components must be >= 0");
+    p.color = r.colour("color", p.color);
     if (r.has("checker")) {
         const JsonReader c = r.child("checker");
         c.only({"color2", "size"});
-        p.checker = Checker{c.vec3("color2", Vec3(0, 0, 0)), c.positive("size", 1.0)};
+        p.checker = Checker{c.colour("color2", Vec3(0, 0, 0)), c.positive("size", 1.0)};
     }
     return p;
 }

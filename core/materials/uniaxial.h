@@ -91,10 +91,10 @@ inline Uniaxial Uniaxial::read(const JsonReader& r, const std::string& file) {
         if (m.ordinary.is_povray() || m.extraordinary.is_povray())
             r.fail_at("ordinary", "POV-Ray's dispersion law is not supported for a uniaxial crystal");
     }
-    const Vec3 axis = r.vec3("optic_axis", m.optic_axis);
-    if (!(axis.norm() > 0) || !axis.allFinite()) r.fail_at("optic_axis", "must be a non-zero vector");
-    m.optic_axis = axis.normalized();
-    m.filter = r.vec3("filter", m.filter);
+    const auto axis = unit_vector(r.vec3("optic_axis", m.optic_axis));
+    if (!axis) r.fail_at("optic_axis", "must be a non-zero vector");
+    m.optic_axis = *axis;
+    m.filter = r.colour("filter", m.filter);
     return m;
 }
 

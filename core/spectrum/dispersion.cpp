@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <refract/core/spectrum/wavelengths.h>
 #include <refract/geometry/error.h>
 
 namespace refract::spectrum {
@@ -408,21 +409,90 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
                      "sellmeier, abbe, moissanite-form, povray");
 }
 
+// The quantity whose sign decides, q(λ) (n for the laws giving n, n² for those giving its
+// square), as a sum of terms each monotone in λ between the poles: Cauchy's A, B/λ², C/λ⁴;
+// Sellmeier's 1 and each B_i λ²/(λ² − C_i); the Moissanite form's A, B/(λ² − C), −Dλ².
+struct Terms {
+    std::array<double, 6> t{};
+    int count = 0;
+    bool squared = false;  // q is n²
+    void add(double v) { t[static_cast<size_t>(count++)] = v; }
+    double sum() const {
+        double q = 0;
+        for (int k = 0; k < count; ++k) q += t[static_cast<size_t>(k)];
+        return q;
+    }
+};
+
+Terms terms_at(const Dispersion& d, double nm) {
+    const double l = nm * 1e-3, l2 = l * l;
+    Terms r;
+    if (const auto* c = std::get_if<CauchyModel>(&d.model)) {
+        r.add(c->A), r.add(c->B / l2), r.add(c->C / (l2 * l2));
+    } else if (const auto* a = std::get_if<AbbeModel>(&d.model)) {
+        r.add(a->A), r.add(a->B / l2);
+    } else if (const auto* s = std::get_if<SellmeierModel>(&d.model)) {
+        r.squared = true;
+        r.add(1.0);
+        for (int i = 0; i < s->terms; ++i) r.add(s->B[static_cast<size_t>(i)] * l2 / (l2 - s->C[static_cast<size_t>(i)]));
+    } else if (const auto* m = std::get_if<MoissaniteFormModel>(&d.model)) {
+        r.squared = true;
+        r.add(m->A), r.add(m->B / (l2 - m->C)), r.add(-m->D * l2);
+    } else {
+        r.add(d.n(nm));  // a constant; POV-Ray's law, monotone in λ
+    }
+    return r;
+}
+
 void check_range(const Dispersion& d, const std::string& path) {
-    // A Sellmeier term's pole λ = √C lies between the whole nanometres sampled below.
+    // A pole λ = √C (µm², so × 1000 for nm) inside the range: the index is infinite there.
+    const auto pole_check = [&](double C, const std::string& field) {
+        const double pole = std::sqrt(std::fmax(C, 0.0)) * 1000.0;
+        if (pole >= kMinWavelength && pole <= kMaxWavelength)
+            throw InputError(path + field + " has its pole at " + format_value(pole) + " nm, inside 360–830 nm");
+    };
     if (const auto* s = std::get_if<SellmeierModel>(&d.model))
-        for (int k = 0; k < s->terms; ++k) {
-            const double pole = std::sqrt(std::fmax(s->C[static_cast<size_t>(k)], 0.0)) * 1000.0;  // C in µm²
-            if (pole >= 360.0 && pole <= 830.0)
-                throw InputError(path + "/C: term " + std::to_string(k + 1) + " has its pole at " + format_value(pole) +
-                                 " nm, inside 360–830 nm");
-        }
-    for (int l = 360; l <= 830; ++l) {
-        const double n = d.n(l);
-        if (!std::isfinite(n) || !(n > 0.0))
-            throw InputError(path + ": the model gives " +
-                             (std::isnan(n) ? std::string("n² < 0") : "n = " + format_value(n)) + " at " +
-                             std::to_string(l) + " nm; it must be finite and > 0 over 360–830 nm");
+        for (int k = 0; k < s->terms; ++k) pole_check(s->C[static_cast<size_t>(k)], "/C: term " + std::to_string(k + 1));
+    if (const auto* m = std::get_if<MoissaniteFormModel>(&d.model)) pole_check(m->C, "/C: the term B/(λ² − C)");
+    const auto refuse = [&](const Terms& t, double nm, const std::string& what) {
+        throw InputError(path + ": the model gives " + (t.squared ? "n² = " : "n = ") + what + " at " +
+                         format_value(nm) + " nm; it must be finite and > 0 over 360–830 nm");
+    };
+    const auto check_point = [&](const Terms& t, double nm) {
+        const double q = t.sum();
+        if (!std::isfinite(q) || !(q > 0)) refuse(t, nm, format_value(q));
+    };
+    // The minimum over the whole continuous range, not at whole nanometres: on [a, b] each
+    // term lies between its values at the ends (monotone, no pole inside), so the sum of
+    // their smaller ends bounds q from below. An interval whose bound is not > 0 is halved
+    // until the bound is > 0 or a point with q <= 0 is found.
+    const Terms lo = terms_at(d, kMinWavelength), hi = terms_at(d, kMaxWavelength);
+    check_point(lo, kMinWavelength);
+    check_point(hi, kMaxWavelength);
+    double largest = 0;  // every value of every term is within its ends: the sum cannot overflow
+    for (int k = 0; k < lo.count; ++k)
+        largest += std::fmax(std::fabs(lo.t[static_cast<size_t>(k)]), std::fabs(hi.t[static_cast<size_t>(k)]));
+    if (!std::isfinite(largest)) refuse(lo, kMinWavelength, "a value past the range of a double");
+    struct Interval {
+        double a, b;
+        Terms ta, tb;
+    };
+    std::vector<Interval> todo{{kMinWavelength, kMaxWavelength, lo, hi}};
+    for (int steps = 0; !todo.empty(); ++steps) {
+        const Interval iv = todo.back();
+        todo.pop_back();
+        double bound = 0;
+        for (int k = 0; k < iv.ta.count; ++k)
+            bound += std::fmin(iv.ta.t[static_cast<size_t>(k)], iv.tb.t[static_cast<size_t>(k)]);
+        if (bound > 0) continue;
+        const double m = 0.5 * (iv.a + iv.b);
+        const Terms tm = terms_at(d, m);
+        check_point(tm, m);
+        // Still not shown > 0 on an interval of 1e-9 nm (39 halvings), or after 100 000
+        // intervals: a minimum that is zero to rounding.
+        if (iv.b - iv.a < 1e-9 || steps > 100000) refuse(tm, m, "0 to within rounding");
+        todo.push_back({iv.a, m, iv.ta, tm});
+        todo.push_back({m, iv.b, tm, iv.tb});
     }
 }
 

@@ -367,11 +367,19 @@ PYBIND11_MODULE(_refract, m) {
                   throw InputError(path + ": write_image needs an array of shape (height, width, 3)");
               Image img(static_cast<int>(rgb.shape(1)), static_cast<int>(rgb.shape(0)));
               std::copy(rgb.data(), rgb.data() + rgb.size(), img.rgb.begin());
-              without_gil([&] { write_image(path, img, WriteOptions{linear16}); });
+              // The caller's values: any sign, but each must be finite as a float (bad input,
+              // not the writer's internal error).
+              for (size_t k = 0; k < img.rgb.size(); ++k)
+                  if (!(std::fabs(img.rgb[k]) <= std::numeric_limits<float>::max()))
+                      throw InputError(path + ": write_image: the value at [" + std::to_string(k / 3 / img.width) +
+                                       ", " + std::to_string(k / 3 % img.width) + ", " + std::to_string(k % 3) +
+                                       "] is " + format_value(img.rgb[k]) + ", not finite as a 32-bit float");
+              without_gil([&] { write_image(path, img, WriteOptions{linear16, true}); });
           },
           py::arg("path"), py::arg("rgb"), py::arg("linear16") = false,
           "Writes linear RGB (height, width, 3) as `refract render` does: .exr/.hdr/.tif linear, .png/.jpg sRGB "
-          "(16-bit linear PNG with linear16); atomically.");
+          "(16-bit linear PNG with linear16); atomically. Every value must be finite as a 32-bit float "
+          "(ValueError otherwise); negative ones are kept in the float formats.");
     m.def("read_image",
           [](const std::string& path) {
               return to_numpy(without_gil([&] { return read_image(path); }));

@@ -104,3 +104,16 @@ def test_an_exr_written_from_a_render_reads_back_bit_for_bit_in_single_precision
         refract.write_image(str(tmp_path / "x.exr"), np.zeros((4, 4)))
     with pytest.raises(ValueError, match="x.bogus"):
         refract.write_image(str(tmp_path / "x.bogus"), r.rgb)
+
+
+def test_write_image_keeps_negative_values_and_refuses_values_not_finite_as_a_float(tmp_path):
+    rgb = np.full((2, 3, 3), 0.25)
+    rgb[1, 2, 0] = -0.5  # an out-of-gamut colour: kept in a float file
+    path = str(tmp_path / "signed.exr")
+    refract.write_image(path, rgb)
+    assert refract.read_image(path)[1, 2, 0] == -0.5
+    for bad in (np.inf, np.nan, 1e300):
+        rgb[0, 1, 2] = bad
+        with pytest.raises(ValueError, match=r"\[0, 1, 2\].*not finite as a 32-bit float"):
+            refract.write_image(str(tmp_path / "bad.exr"), rgb)
+    assert not (tmp_path / "bad.exr").exists()
