@@ -3,16 +3,16 @@
 #   bash run.sh reproduce   install what is missing, build, reproduce every figure and
 #                           the validation report into out/ (open out/index.html)
 #   bash run.sh test        install what is missing, build, run the test suite (ctest), then
-#                           the sanitizer build and its tests, and the fuzzing build
+#                           the sanitizer build, its tests and 20 s of fuzzing
 #   bash run.sh build       install and build only
-#   bash run.sh sanitize    the sanitizer build (gcc, ASan, UBSan) of geometry/, core/ and
-#                           their tests in build-sanitize/, and those tests
-#                           (part of `test`; REFRACT_SKIP_SANITIZE=1 leaves it out)
-#   bash run.sh fuzz [S]    build the libFuzzer target (clang, ASan, UBSan) in build-fuzz/ and
-#                           fuzz the scene reader, a tiny render and its files for S seconds
-#                           (60); `test` builds it too and runs it for 20 s, so that neither
-#                           the target nor its oracle can rot
-#                           (REFRACT_SKIP_FUZZ_BUILD=1 leaves it out)
+#   bash run.sh sanitize    the sanitizer build (clang, ASan, UBSan, the fuzzer's coverage) of
+#                           geometry/, core/, their tests and the libFuzzer target in
+#                           build-sanitize/, and those tests
+#   bash run.sh fuzz [S]    that build, then fuzz the scene reader, a tiny render and its files
+#                           for S seconds (60); `test` runs it for 20 s, so that neither the
+#                           target nor its oracle can rot
+#                           (REFRACT_SKIP_SANITIZE=1 leaves the sanitizer tests and the
+#                           fuzzing out of `test`)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -35,49 +35,43 @@ install_missing() {
     fi
 }
 
-# The sanitizer build (build-sanitize/, gcc): geometry/, core/ and their tests with
-# AddressSanitizer and UndefinedBehaviorSanitizer, at -O1 to keep its build short.
-sanitize() {
-    cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
-        -DREFRACT_SANITIZE=ON >/dev/null
+# The sanitizer tree (build-sanitize/, clang): geometry/, core/, their tests and the
+# libFuzzer target, with AddressSanitizer, UndefinedBehaviorSanitizer and the fuzzer's
+# coverage, at -O1 -g1 (line tables for the reports) to keep its build short. One tree
+# serves the sanitizer tests, the test path's short fuzz run and `fuzz`. Clang and its
+# runtime libraries are installed only here.
+sanitize_build() {
+    PACKAGES+=(clang libclang-rt-14-dev)
+    install_missing
+    CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
+        -DREFRACT_FUZZ=ON -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
     cmake --build build-sanitize -j "$(nproc)"
+}
+
+sanitize() {
+    sanitize_build
     ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -L sanitize
 }
 
-# The libFuzzer target (clang; geometry/ and core/ instrumented for it and built with
-# AddressSanitizer and UndefinedBehaviorSanitizer): `fuzz_build DIR TYPE` builds it in DIR
-# with CMAKE_BUILD_TYPE TYPE. The test path builds it unoptimised and without debug
-# information in build-fuzz-check/ (that it still compiles and links with clang, quickly)
-# and runs it briefly (fuzz_check); `fuzz` builds and runs it optimised. Clang and its
-# runtime libraries are installed only here.
-fuzz_build() {
-    PACKAGES+=(clang libclang-rt-14-dev)
-    install_missing
-    CXX=clang++ cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE="$2" -DREFRACT_FUZZ=ON \
-        -DREFRACT_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
-    cmake --build "$1" -j "$(nproc)" --target scene_fuzzer
-}
-
-# `fuzz_run DIR SECONDS SEEDS...`: the fuzzer built in DIR for SECONDS (the seeds are all
-# run first, however long they take), its corpus in DIR/corpus, a failing input written to
-# DIR/findings/; it fails on one.
+# `fuzz_run SECONDS SEEDS...`: the fuzzer of build-sanitize/ for SECONDS (the seeds are all
+# run first, however long they take), its corpus in build-sanitize/corpus, a failing input
+# written to build-sanitize/findings/; it fails on one.
 fuzz_run() {
-    local dir="$1" seconds="$2"
-    shift 2
+    local dir=build-sanitize seconds="$1"
+    shift
     mkdir -p "$dir/corpus" "$dir/findings"
     "./$dir/fuzz/scene_fuzzer" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
         -artifact_prefix="$dir/findings/" "$dir/corpus" "$@"
 }
 
-# The test path's short run of the unoptimised target: a fresh corpus, every seed but the
-# 1998 diamond (whose exact cut and polyhedron take minutes unoptimised), 20 s.
+# The test path's short run: a fresh corpus, every seed but the 1998 diamond (whose exact
+# cut and polyhedron take minutes under the sanitizers), 20 s.
 fuzz_check() {
-    fuzz_build build-fuzz-check Debug
-    rm -rf build-fuzz-check/corpus build-fuzz-check/seeds
-    mkdir -p build-fuzz-check/seeds
-    cp scenes/examples/*.json scenes/validation/*.json fuzz/seeds/*.json build-fuzz-check/seeds/
-    rm build-fuzz-check/seeds/ohtsuka1998-diamond.json
-    fuzz_run build-fuzz-check 20 build-fuzz-check/seeds
+    rm -rf build-sanitize/corpus build-sanitize/seeds
+    mkdir -p build-sanitize/seeds
+    cp scenes/examples/*.json scenes/validation/*.json fuzz/seeds/*.json build-sanitize/seeds/
+    rm build-sanitize/seeds/ohtsuka1998-diamond.json
+    fuzz_run 20 build-sanitize/seeds
 }
 
 build() {
@@ -96,8 +90,10 @@ case "${1:-}" in
         install_missing
         build
         ctest --test-dir build --output-on-failure -j "$(nproc)"
-        [ "${REFRACT_SKIP_SANITIZE:-0}" = 1 ] || sanitize
-        [ "${REFRACT_SKIP_FUZZ_BUILD:-0}" = 1 ] || fuzz_check
+        if [ "${REFRACT_SKIP_SANITIZE:-0}" != 1 ]; then
+            sanitize
+            fuzz_check
+        fi
         ;;
     sanitize)
         install_missing
@@ -108,8 +104,8 @@ case "${1:-}" in
         build
         ;;
     fuzz)
-        fuzz_build build-fuzz RelWithDebInfo
-        fuzz_run build-fuzz "${2:-60}" scenes/examples scenes/validation fuzz/seeds
+        sanitize_build
+        fuzz_run "${2:-60}" scenes/examples scenes/validation fuzz/seeds
         ;;
     *)
         echo "usage: bash run.sh reproduce|test|build|sanitize|fuzz [SECONDS]" >&2

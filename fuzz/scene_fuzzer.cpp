@@ -89,7 +89,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     RenderOptions o;
     o.threads = 1;
     o.lost_energy = true;
-    o.spectral_channels = s.spectral.enabled && s.compat == Compat::Physical && s.polarisation == PolarisationModel::Natural;
+    // Spectral channels are natural light's: asked for unless the scene asks for exact light.
+    o.spectral_channels = s.spectral.enabled && s.compat == Compat::Physical &&
+                          s.requested_polarisation.value_or(PolarisationModel::Natural) == PolarisationModel::Natural;
     RenderResult r;
     try {
         r = render(scene, o);

@@ -357,16 +357,23 @@ json dispersive_drop() {
 
 }  // namespace
 
+// Bit-identity holds for any count: the sanitizer build (ten times slower) walks fewer.
+#ifdef REFRACT_SANITIZED
+constexpr std::uint64_t kPacketPhotons = 4000;
+#else
+constexpr std::uint64_t kPacketPhotons = 20000;
+#endif
+
 TEST_CASE("Far field: the wavelengths of a photon walked in packets give the one-by-one result to the last bit",
           "[far-field]") {
     SECTION("a dispersive drop, 31 wavelengths") {
-        check_same(lanes_and_alone(dispersive_drop(), axis_bins(180, 20000)), true);
+        check_same(lanes_and_alone(dispersive_drop(), axis_bins(180, kPacketPhotons)), true);
     }
     SECTION("a drop with a bubble and a second drop (several spheres)") {
         json j = dispersive_drop();
         j["objects"].push_back({{"type", "sphere"}, {"center", {0.2, 0.1, 0}}, {"radius", -0.3}, {"material", "glass"}});
         j["objects"].push_back({{"type", "sphere"}, {"center", {0.5, 0.2, 3}}, {"radius", 0.7}, {"material", "glass"}});
-        FarFieldSettings s = axis_bins(90, 10000);
+        FarFieldSettings s = axis_bins(90, kPacketPhotons / 2);
         s.binning = FarFieldSettings::Binning::Sphere;
         s.azimuth_bins = 24;
         s.polar_bins = 12;

@@ -204,7 +204,8 @@ double rel_error(const IlluminationMap& a, MapFilter f, const IlluminationMap& r
 
 }  // namespace
 
-TEST_CASE("Caustic error falls with photon count, bilinear below box at every count", "[light-pass][map]") {
+TEST_CASE("Caustic error falls with photon count, bilinear below box at every count",
+          "[light-pass][map][statistical]") {
     const auto ref = maps_of(sphere_caustic(1600000, 99, 0.04));
     const IlluminationMap& r = *ref->by_object[0];
     std::vector<double> box, bil;
