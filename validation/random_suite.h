@@ -23,12 +23,17 @@ struct Comparison {
     enum class Outcome { Pass, Fail, Skip } outcome = Outcome::Skip;
     std::string reason;       // Skip: why (not expressible, POV-Ray failed, ...)
     ImageDifference diff;     // Pass / Fail
+    // A pass only with knife-edge pixels set aside (validation/knife_edge.h): their number
+    // and the difference outside them; 0 when the rule is met as it stands.
+    int knife_edge_pixels = 0;
+    ImageDifference diff_outside_knife_edges;
     Image refract, povray;    // refract clipped to [0, 1] as POV-Ray's PNG is
     double refract_seconds = 0, povray_seconds = 0;
 };
 
 // Renders `scene_json` (a scene file as JSON; "compat" forced to "povray") with both.
-// Never throws for a problem of the scene itself (that is a Skip with its reason).
+// A scene that meets the fraction rule but not the RMSE passes when it does so with its
+// knife-edge pixels set aside (validation/knife_edge.h). Never throws for a problem of the scene itself (that is a Skip with its reason).
 Comparison compare_with_povray(const nlohmann::json& scene_json, const std::string& name, const Targets& targets,
                                const PovrayOptions& povray, int threads);
 
@@ -64,6 +69,8 @@ struct RandomCase {
     Comparison::Outcome outcome = Comparison::Outcome::Skip;
     std::string reason;
     ImageDifference diff;
+    int knife_edge_pixels = 0;            // a pass with these set aside
+    ImageDifference diff_outside_knife_edges;
     std::optional<ShrinkResult> minimal;  // failures, when shrinking is on
     std::string dir;                      // failures: out_dir/seed-N
     double seconds = 0;                   // refract + POV-Ray (and shrinking)
@@ -72,6 +79,7 @@ struct RandomCase {
 struct RandomResult {
     std::vector<RandomCase> cases;  // in seed order
     int passed = 0, failed = 0, skipped = 0;
+    int passed_with_knife_edges = 0;  // of `passed`
 };
 
 // Runs the batch; one line per scene to `progress` when given; writes
