@@ -182,9 +182,13 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                         } else {
                             std::vector<double> bands(result.wavelengths.size(), 0.0);
                             result.image.set(i, j, integrator->pixel(i, j, st, opt.spectral_channels ? &bands : nullptr));
-                            std::copy(bands.begin(), bands.end(),
-                                      result.spectral.begin() +
-                                          static_cast<std::ptrdiff_t>(bands.size() * (static_cast<size_t>(j) * W + i)));
+                            // Light at a wavelength is >= 0; the estimate (docs/scene-format.md,
+                            // spectral channels) dips below only through RGB-weighted light-pass
+                            // maps in a scene that is not colour-neutral: clipped as cie-rgb clips.
+                            std::transform(bands.begin(), bands.end(),
+                                           result.spectral.begin() +
+                                               static_cast<std::ptrdiff_t>(bands.size() * (static_cast<size_t>(j) * W + i)),
+                                           [](double b) { return std::fmax(b, 0.0); });
                         }
                         if (opt.lost_energy) {
                             const size_t px = 3 * (static_cast<size_t>(j) * W + i);

@@ -3,9 +3,15 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include <refract/core/image.h>
 #include <refract/core/integrators/spectral.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
@@ -68,4 +74,38 @@ TEST_CASE("Spectral channels are refused without the physical spectral pass", "[
     json j = grey_diamond({{"max_depth", 4}});
     j["materials"]["gem"] = {{"type", "dielectric"}, {"ior", 2.4}};
     CHECK_THROWS_WITH(render(parse_scene(j, "rgb.json"), o), Catch::Contains("spectral channels"));
+}
+
+TEST_CASE("Spectral channels are never negative: a yellow light's light pass on the 1998 diamond (a fuzzer finding)",
+          "[spectral]") {
+    // The fuzzer's tiny render of scenes/examples/ohtsuka1998-diamond.json with the light's
+    // colour changed to [1, 1, 0]: the band-weighted maps gave −0.0087 at 400 nm, which the
+    // writer refused as an internal error.
+    std::ifstream in(std::string(REFRACT_SOURCE_DIR) + "/scenes/examples/ohtsuka1998-diamond.json");
+    json j = json::parse(in);
+    j["lights"][0]["color"] = {1.0, 1.0, 0.0};
+    j["camera"]["width"] = 8;
+    j["camera"]["height"] = 6;
+    j["render"]["max_depth"] = 6;
+    j["render"]["light_pass"]["photons"] = 200;
+    j["render"]["light_pass"]["element_size"] = 0.05;
+    const Scene s = parse_scene(j, "yellow.json");
+    RenderOptions o;
+    o.threads = 1;
+    o.spectral_channels = true;
+    const RenderResult r = render(s, o);
+    REQUIRE(r.spectral.size() == r.wavelengths.size() * 8 * 6);
+    double lo = 1e300, hi = 0;
+    for (double v : r.spectral) {
+        lo = std::fmin(lo, v);
+        hi = std::fmax(hi, v);
+    }
+    CHECK(lo >= 0.0);
+    CHECK(hi > 0.0);
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("refract-yellow-" + std::to_string(::getpid()) + ".spectral.exr")).string();
+    std::vector<std::string> names;
+    for (double nm : r.wavelengths) names.push_back(std::to_string(static_cast<int>(nm)) + "nm");
+    CHECK_NOTHROW(write_channels(path, 8, 6, names, r.spectral, {}));
+    std::filesystem::remove(path);
 }
