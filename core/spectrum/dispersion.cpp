@@ -108,21 +108,50 @@ constexpr double kPovCentre = 555.0;
 // ---------------------------------------------------------------------------------------
 // The laws.
 
-double cauchy_index(double l, double A, double B, double C) {
-    const double l2 = l * l;
-    return A + B / l2 + C / (l2 * l2);  // Cauchy: n = A + B/λ² + C/λ⁴
+double LawTerms::sum() const {
+    double q = 0.0;
+    for (int k = 0; k < count; ++k) q = k == 0 ? t[0] : q + t[static_cast<size_t>(k)];
+    return q;
 }
 
-double sellmeier_index(double l, const double* B, const double* C, int terms) {
+double LawTerms::index() const { return squared ? std::sqrt(sum()) : sum(); }
+
+LawTerms cauchy_terms(double l, double A, double B, double C) {
     const double l2 = l * l;
-    double n2 = 1.0;  // Sellmeier: n² = 1 + Σ B_i λ²/(λ² − C_i)
-    for (int i = 0; i < terms; ++i) n2 += B[i] * l2 / (l2 - C[i]);
-    return std::sqrt(n2);
+    LawTerms r;  // Cauchy: n = A + B/λ² + C/λ⁴
+    r.add(A);
+    r.add(B / l2);
+    r.add(C / (l2 * l2));
+    return r;
+}
+
+LawTerms sellmeier_terms(double l, const double* B, const double* C, int terms) {
+    const double l2 = l * l;
+    LawTerms r;  // Sellmeier: n² = 1 + Σ B_i λ²/(λ² − C_i)
+    r.squared = true;
+    r.add(1.0);
+    for (int i = 0; i < terms; ++i) r.add(B[i] * l2 / (l2 - C[i]));
+    return r;
+}
+
+LawTerms moissanite_form_terms(double l, double A, double B, double C, double D) {
+    const double l2 = l * l;
+    LawTerms r;  // Wang 2013: n² = A + B/(λ² − C) − Dλ²
+    r.squared = true;
+    r.add(A);
+    r.add(B / (l2 - C));
+    r.add(-D * l2);
+    return r;
+}
+
+double cauchy_index(double l, double A, double B, double C) { return cauchy_terms(l, A, B, C).index(); }
+
+double sellmeier_index(double l, const double* B, const double* C, int terms) {
+    return sellmeier_terms(l, B, C, terms).index();
 }
 
 double moissanite_form_index(double l, double A, double B, double C, double D) {
-    const double l2 = l * l;
-    return std::sqrt(A + B / (l2 - C) - D * l2);  // Wang 2013: n² = A + B/(λ² − C) − Dλ²
+    return moissanite_form_terms(l, A, B, C, D).index();
 }
 
 double povray_index(double ior, double dispersion, double lambda_nm) {
@@ -409,40 +438,39 @@ Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
                      "sellmeier, abbe, moissanite-form, povray");
 }
 
-// The quantity whose sign decides, q(λ) (n for the laws giving n, n² for those giving its
-// square), as a sum of terms each monotone in λ between the poles: Cauchy's A, B/λ², C/λ⁴;
-// Sellmeier's 1 and each B_i λ²/(λ² − C_i); the Moissanite form's A, B/(λ² − C), −Dλ².
-struct Terms {
-    std::array<double, 6> t{};
-    int count = 0;
-    bool squared = false;  // q is n²
-    void add(double v) { t[static_cast<size_t>(count++)] = v; }
-    double sum() const {
-        double q = 0;
-        for (int k = 0; k < count; ++k) q += t[static_cast<size_t>(k)];
-        return q;
+// The quantity whose sign decides, q(λ), as the law's terms (LawTerms); a constant and
+// POV-Ray's law (monotone in λ) as one term. Poles: the C of each term B/(λ² − C).
+struct TermsAt {
+    double l, nm;
+    LawTerms one(double v) const {
+        LawTerms r;
+        r.add(v);
+        return r;
     }
+    LawTerms operator()(const ConstantIndex& m) const { return one(m.n); }
+    LawTerms operator()(const CauchyModel& m) const { return cauchy_terms(l, m.A, m.B, m.C); }
+    LawTerms operator()(const SellmeierModel& m) const { return sellmeier_terms(l, m.B.data(), m.C.data(), m.terms); }
+    LawTerms operator()(const AbbeModel& m) const { return cauchy_terms(l, m.A, m.B, 0.0); }
+    LawTerms operator()(const MoissaniteFormModel& m) const { return moissanite_form_terms(l, m.A, m.B, m.C, m.D); }
+    LawTerms operator()(const PovRayModel& m) const { return one(povray_index(m.ior, m.dispersion, nm)); }
 };
 
-Terms terms_at(const Dispersion& d, double nm) {
-    const double l = nm * 1e-3, l2 = l * l;
-    Terms r;
-    if (const auto* c = std::get_if<CauchyModel>(&d.model)) {
-        r.add(c->A), r.add(c->B / l2), r.add(c->C / (l2 * l2));
-    } else if (const auto* a = std::get_if<AbbeModel>(&d.model)) {
-        r.add(a->A), r.add(a->B / l2);
-    } else if (const auto* s = std::get_if<SellmeierModel>(&d.model)) {
-        r.squared = true;
-        r.add(1.0);
-        for (int i = 0; i < s->terms; ++i) r.add(s->B[static_cast<size_t>(i)] * l2 / (l2 - s->C[static_cast<size_t>(i)]));
-    } else if (const auto* m = std::get_if<MoissaniteFormModel>(&d.model)) {
-        r.squared = true;
-        r.add(m->A), r.add(m->B / (l2 - m->C)), r.add(-m->D * l2);
-    } else {
-        r.add(d.n(nm));  // a constant; POV-Ray's law, monotone in λ
+LawTerms terms_at(const Dispersion& d, double nm) { return std::visit(TermsAt{nm * 1e-3, nm}, d.model); }
+
+// Each pole C (µm²) with the field it comes from.
+struct Poles {
+    using List = std::vector<std::pair<double, std::string>>;
+    List operator()(const ConstantIndex&) const { return {}; }
+    List operator()(const CauchyModel&) const { return {}; }
+    List operator()(const SellmeierModel& m) const {
+        List r;
+        for (int k = 0; k < m.terms; ++k) r.emplace_back(m.C[static_cast<size_t>(k)], "/C: term " + std::to_string(k + 1));
+        return r;
     }
-    return r;
-}
+    List operator()(const AbbeModel&) const { return {}; }
+    List operator()(const MoissaniteFormModel& m) const { return {{m.C, "/C: the term B/(λ² − C)"}}; }
+    List operator()(const PovRayModel&) const { return {}; }
+};
 
 void check_range(const Dispersion& d, const std::string& path) {
     // A pole λ = √C (µm², so × 1000 for nm) inside the range: the index is infinite there.
@@ -451,14 +479,12 @@ void check_range(const Dispersion& d, const std::string& path) {
         if (pole >= kMinWavelength && pole <= kMaxWavelength)
             throw InputError(path + field + " has its pole at " + format_value(pole) + " nm, inside 360–830 nm");
     };
-    if (const auto* s = std::get_if<SellmeierModel>(&d.model))
-        for (int k = 0; k < s->terms; ++k) pole_check(s->C[static_cast<size_t>(k)], "/C: term " + std::to_string(k + 1));
-    if (const auto* m = std::get_if<MoissaniteFormModel>(&d.model)) pole_check(m->C, "/C: the term B/(λ² − C)");
-    const auto refuse = [&](const Terms& t, double nm, const std::string& what) {
+    for (const auto& [C, field] : std::visit(Poles{}, d.model)) pole_check(C, field);
+    const auto refuse = [&](const LawTerms& t, double nm, const std::string& what) {
         throw InputError(path + ": the model gives " + (t.squared ? "n² = " : "n = ") + what + " at " +
                          format_value(nm) + " nm; it must be finite and > 0 over 360–830 nm");
     };
-    const auto check_point = [&](const Terms& t, double nm) {
+    const auto check_point = [&](const LawTerms& t, double nm) {
         const double q = t.sum();
         if (!std::isfinite(q) || !(q > 0)) refuse(t, nm, format_value(q));
     };
@@ -466,7 +492,7 @@ void check_range(const Dispersion& d, const std::string& path) {
     // term lies between its values at the ends (monotone, no pole inside), so the sum of
     // their smaller ends bounds q from below. An interval whose bound is not > 0 is halved
     // until the bound is > 0 or a point with q <= 0 is found.
-    const Terms lo = terms_at(d, kMinWavelength), hi = terms_at(d, kMaxWavelength);
+    const LawTerms lo = terms_at(d, kMinWavelength), hi = terms_at(d, kMaxWavelength);
     check_point(lo, kMinWavelength);
     check_point(hi, kMaxWavelength);
     double largest = 0;  // every value of every term is within its ends: the sum cannot overflow
@@ -475,7 +501,7 @@ void check_range(const Dispersion& d, const std::string& path) {
     if (!std::isfinite(largest)) refuse(lo, kMinWavelength, "a value past the range of a double");
     struct Interval {
         double a, b;
-        Terms ta, tb;
+        LawTerms ta, tb;
     };
     std::vector<Interval> todo{{kMinWavelength, kMaxWavelength, lo, hi}};
     for (int steps = 0; !todo.empty(); ++steps) {
@@ -486,7 +512,7 @@ void check_range(const Dispersion& d, const std::string& path) {
             bound += std::fmin(iv.ta.t[static_cast<size_t>(k)], iv.tb.t[static_cast<size_t>(k)]);
         if (bound > 0) continue;
         const double m = 0.5 * (iv.a + iv.b);
-        const Terms tm = terms_at(d, m);
+        const LawTerms tm = terms_at(d, m);
         check_point(tm, m);
         // Still not shown > 0 on an interval of 1e-9 nm (39 halvings), or after 100 000
         // intervals: a minimum that is zero to rounding.

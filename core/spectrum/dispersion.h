@@ -29,6 +29,22 @@ constexpr double G = 430.78;    // Fe / Ca
 // ---------------------------------------------------------------------------------------
 // The laws, as small pure functions.
 
+// Each law as the sum of its terms, q(λ) = Σ t_k (q = n, or n² where `squared`), each term
+// monotone in λ between the law's poles: the index is that sum (or its root) taken left to
+// right, and the range check (check_range) bounds it from the terms' values at an
+// interval's ends. The formulas are written once, in the *_terms functions.
+struct LawTerms {
+    std::array<double, 5> t{};
+    int count = 0;
+    bool squared = false;  // the sum is n²
+    void add(double v) { t[static_cast<size_t>(count++)] = v; }
+    double sum() const;    // left to right
+    double index() const;  // the sum, or its square root
+};
+LawTerms cauchy_terms(double lambda_um, double A, double B, double C);
+LawTerms sellmeier_terms(double lambda_um, const double* B, const double* C, int terms);
+LawTerms moissanite_form_terms(double lambda_um, double A, double B, double C, double D);
+
 // Cauchy (1836): n = A + B/λ² + C/λ⁴, λ in µm, B in µm², C in µm⁴.
 double cauchy_index(double lambda_um, double A, double B, double C);
 // Sellmeier (1871): n² = 1 + Σ_i B_i λ² / (λ² − C_i), λ in µm, C_i in µm² (terms <= 4).
