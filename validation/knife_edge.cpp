@@ -13,11 +13,14 @@ Camera shifted_camera(const Camera& camera, double dx, double dy) {
     const Camera::Basis b = camera.basis();
     const Vec3 shift = b.R * (dx / camera.width) - b.U * (dy / camera.height);
     Camera c = camera;
-    if (camera.type == Camera::Type::Perspective) {
-        c.look_at = camera.location + b.D + shift;
-    } else {
-        c.location += shift;
-        c.look_at += shift;
+    switch (camera.type) {  // every camera type (-Wswitch names one left out)
+        case Camera::Type::Perspective:
+            c.look_at = camera.location + b.D + shift;
+            break;
+        case Camera::Type::Orthographic:
+            c.location += shift;
+            c.look_at += shift;
+            break;
     }
     return c;
 }
