@@ -343,10 +343,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                             // where the tracer walks them), its dropped power tallied.
                             walker.walk_bands(
                                 static_cast<int>(gw),
-                                [&](auto& s, int i) {
-                                    e.band = static_cast<std::int16_t>(w0 + static_cast<size_t>(i));
-                                    s.arrive(e, *first);
-                                },
+                                [&](auto& s, int i) { s.arrive_band(e, *first, static_cast<int>(w0) + i); },
                                 ends,
                                 [&](int i, const LossesT<double>& lost) {
                                     st.lost_depth += lost.depth;

@@ -74,6 +74,7 @@ HitSearch::HitSearch(const Scene& scene, const CompatRules& rules, const TraceOp
         casts_shadow_[k] = casts_shadow(m) ? 1 : 0;
         listed_[k] = rules.interior_lists() && rules.single_precision_meshes() &&
                      std::holds_alternative<TriangleMesh>(order_[k]->shape) && m.dielectric();
+        any_listed_ = any_listed_ || listed_[k];
     }
     mesh_accel_.resize(order_.size());
     pov_mesh_.resize(order_.size());
@@ -318,6 +319,17 @@ struct HitSearch::LaneSearch {
     }
 };
 
+REFRACT_LANE_OP void HitSearch::lanes_on(const Sphere& s, size_t k, LaneSearch& q) const {
+    // The sphere the rays leave: none for those moving away from its centre (intersect_from).
+    const LaneShapeHits h = refract::intersect_lanes(s, q.origin, q.dir, q.active, q.t_min, q.lim, q.leaving(k));
+    q.take(k, h.hit, h, order_[k]);
+}
+
+REFRACT_LANE_OP void HitSearch::lanes_on(const Plane& p, size_t k, LaneSearch& q) const {
+    const LaneShapeHits h = refract::intersect_lanes(p, q.origin, q.dir, q.active, q.t_min, q.lim);
+    q.take(k, h.hit, h, order_[k]);
+}
+
 template <class OtherShape>
 void HitSearch::lanes_on(const OtherShape&, size_t k, LaneSearch& q) const {
     lanes_one_by_one(k, q.active, q);
@@ -396,6 +408,7 @@ HitSearch::LaneHits HitSearch::intersect_lanes(const LaneVec3& origin, const Lan
     // the incident side.
     out.entering = out.hit && (q.outward.dot(dir) < Lanes(0.0));
     out.normal = select(out.entering, q.outward, -q.outward);
+    if (!any_listed_) return out;
     for_each_lane(out.hit, [&](int l) {  // POV-Ray's interior lists (intersect())
         const size_t i = static_cast<size_t>(l);
         if (!listed_[q.best_k[i]]) return;
@@ -416,16 +429,6 @@ void HitSearch::lanes_one_by_one(size_t k, const LaneMask& lanes, LaneSearch& q)
     });
 }
 
-void HitSearch::lanes_on(const Sphere& s, size_t k, LaneSearch& q) const {
-    // The sphere the rays leave: none for those moving away from its centre (intersect_from).
-    const LaneShapeHits h = refract::intersect_lanes(s, q.origin, q.dir, q.active, q.t_min, q.lim, q.leaving(k));
-    q.take(k, h.hit, h, order_[k]);
-}
-
-void HitSearch::lanes_on(const Plane& p, size_t k, LaneSearch& q) const {
-    const LaneShapeHits h = refract::intersect_lanes(p, q.origin, q.dir, q.active, q.t_min, q.lim);
-    q.take(k, h.hit, h, order_[k]);
-}
 
 
 void HitSearch::lanes_on(const ConvexPolyhedron& c, size_t k, LaneSearch& q) const {

@@ -153,6 +153,7 @@ private:
     std::optional<SphereGroup> spheres_, shadow_spheres_;
     std::vector<char> casts_shadow_;                        // per entry of order_
     std::vector<char> listed_;                              // per entry of order_: list_inverts applies
+    bool any_listed_ = false;                               // some entry of listed_ is set
     std::vector<std::unique_ptr<FacetGraph>> facet_graph_;  // per entry of order_: bounded plane sets
     std::vector<std::int32_t> facet_base_;                  // per entry of order_: first id in the guess cache
     std::vector<std::size_t> order_of_;                     // Scene::objects index → order_ index

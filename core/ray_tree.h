@@ -117,6 +117,27 @@ struct TreeEntryT {
         set_lane(from, l, e.from);
         depth = e.depth;
     }
+    // Packets: every lane e, none in use; set_band() then turns lane l on at its band (the
+    // bands of one entry, seeded as one broadcast).
+    void fill(const TreeEntryT<P>& e) {
+        static_assert(kPacketOf<S>, "a packet's lanes");
+        ray.origin = VecOf<S>::broadcast(e.ray.origin);
+        ray.dir = VecOf<S>::broadcast(e.ray.dir);
+        weight = VecOf<S>::broadcast(e.weight);
+        bailout = S(e.bailout);
+        travelled = S(e.travelled);
+        active = MaskOf<S>::Constant(false);
+        band.fill(e.band);
+        reflections.fill(e.reflections);
+        transmissions.fill(e.transmissions);
+        from.fill(e.from);
+        depth = e.depth;
+    }
+    void set_band(int l, std::int16_t b) {
+        static_assert(kPacketOf<S>, "a packet's lane");
+        active[l] = true;
+        set_lane(band, l, b);
+    }
 };
 using TreeEntry = TreeEntryT<NaturalLight>;
 using LaneEntry = TreeEntryT<NaturalLight, Lanes>;
@@ -325,6 +346,12 @@ public:
         void arrive(const Entry& e, const SurfaceHit& h) { take(e, h, true, 0.0); }
         // Entry e (at its band) at hit h: its node with the band's index (0: the material's).
         void expand(const Entry& e, const SurfaceHit& h, double band_ior) { take(e, h, false, band_ior); }
+        // The same for entry e at band `band`, where e (but its band) and h are the same for
+        // every band of the walk: a packet's lanes are seeded by one broadcast.
+        void arrive_band(const Entry& e, const SurfaceHit& h, int band) { take_band(e, h, true, band, 0.0); }
+        void expand_band(const Entry& e, const SurfaceHit& h, int band, double band_ior) {
+            take_band(e, h, false, band, band_ior);
+        }
         // Entry e's child along branch br at hit h (natural light), tinted and at `band`: a
         // reflected branch first, a transmitted one after it.
         void push(const Entry& e, const SurfaceHit& h, const Branch& br, bool transmitted, const Vec3& tint, int band) {
@@ -355,13 +382,31 @@ public:
             if (w_.make_child(c, e, h, br.ray.dir, br.factor, br.bailout_factor, transmitted, x, one))
                 children_[transmitted ? 1 : 0].set(lane_, c);
         }
+        void take_band(const Entry& e, const SurfaceHit& h, bool absorb, int band, double band_ior) {
+            if (!lost_) {
+                Entry eb = e;
+                eb.band = static_cast<std::int16_t>(band);
+                take(eb, h, absorb, band_ior);
+                return;
+            }
+            if (!entry_.active.any()) {  // the packet's first band
+                hit_ = h;
+                absorb_ = absorb;
+                entry_.fill(e);
+            }
+            entry_.set_band(lane_, static_cast<std::int16_t>(band));
+        }
         void take(const Entry& e, const SurfaceHit& h, bool absorb, double band_ior) {
-            hit_ = h;
-            absorb_ = absorb;
             if (lost_) {
+                if (!entry_.active.any()) {  // a packet's lanes share their hit
+                    hit_ = h;
+                    absorb_ = absorb;
+                }
                 entry_.set(lane_, e);
                 return;
             }
+            hit_ = h;
+            absorb_ = absorb;
             one_ = e;
             band_ior_ = band_ior;
             has_one_ = true;

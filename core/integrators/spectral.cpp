@@ -142,9 +142,8 @@ private:
         // Band k's subtree: entry e at band k, at hit h, with the band's index.
         const auto at_band = [&](const std::vector<int>& bands) {
             return [&, bands](auto& s, int i) {
-                Entry eb = e;
-                eb.band = static_cast<std::int16_t>(bands[static_cast<size_t>(i)]);
-                s.expand(eb, h, ctx_.index[static_cast<size_t>(eb.band)][mi]);
+                const int band = bands[static_cast<size_t>(i)];
+                s.expand_band(e, h, band, ctx_.index[static_cast<size_t>(band)][mi]);
             };
         };
         if (ctx_.shortcut) {
