@@ -13,6 +13,7 @@
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
 #include "cli/commands.h"
+#include <refract/core/threads.h>
 #include <refract/core/render.h>
 #include <refract/core/tracer.h>
 #include <refract/experiments/common.h>
@@ -25,7 +26,7 @@
 namespace {
 
 struct Args {
-    int width = 640, height = 480, threads = 2, samples = 31;
+    int width = 640, height = 480, threads = 0, samples = 31;
     std::uint64_t photons = 30000;
     std::string povray = "povray";
     double timeout = 900;
@@ -273,9 +274,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
                  "kernels and meshes against Embree");
     sub->add_option("--width", a->width, "Image width (640)");
     sub->add_option("--height", a->height, "Image height (480)");
-    sub->add_option("--threads", a->threads, "Threads for refract and POV-Ray (+WT), 2")->check(refract::cli::thread_range(1));
+    sub->add_option("--threads", a->threads, "Threads for refract and POV-Ray (+WT) (0: all cores)")->check(refract::cli::thread_range());
     sub->add_option("--samples", a->samples, "POV-Ray dispersion_samples (31 = 400-700 nm every 10 nm)");
-    sub->add_option("--photons", a->photons, "Light-pass photons (30000)");
+    sub->add_option("--photons", a->photons, "Light-pass photons (30000)")->check(CLI::NonNegativeNumber);
     sub->add_option("--povray", a->povray, "POV-Ray executable");
     sub->add_option("--timeout", a->timeout, "POV-Ray time limit in seconds (900; 0.001 to 86400)");
     sub->add_flag("--no-povray", a->no_povray, "Time refract only");
@@ -299,6 +300,7 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
+        a->threads = worker_threads(a->threads);
         if (a->kernels || a->meshes || a->objects || a->sweep || !a->rtiow.empty()) {
             if (a->sweep) cli::bench::sweep(a->threads, a->sweep_rays);
             if (a->objects) cli::bench::objects(a->rounds > 0 ? a->rounds : 5);

@@ -78,7 +78,7 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
         ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 31));  // a negative count refused, not wrapped
     sub->add_option("--wavelengths", a->wavelengths,
                     "Wavelengths in nm (default: the scene's sampling when a material is dispersive or absorbing, else 550)");
-    sub->add_option("--seed", a->seed, "Random seed (7)");
+    sub->add_option("--seed", a->seed, "Random seed (7)")->check(CLI::NonNegativeNumber);
     refract::cli::add_max_memory(sub, a->max_memory);
     sub->add_option("--threads", a->threads, "Worker threads (0: all cores); the result does not depend on it")
         ->check(refract::cli::thread_range());

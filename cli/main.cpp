@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "cli/commands.h"
+#include "cli/suggest.h"
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     refract::install_temp_cleanup();  // Ctrl-C or a kill leaves no temporary behind
     CLI::App app{"refract: a research toolkit for the physics of refraction in rendering"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("refract ") + REFRACT_VERSION);
     auto entries = refract::cli::registry();
     std::sort(entries.begin(), entries.end(),
               [](const auto& a, const auto& b) { return a.order < b.order; });
@@ -59,8 +61,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::cerr << "refract: " << refract::cli::printable(e.what()) << "\n";  // one line, as every other error
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        // One line, as every other error; a slip of a command or option name says the
+        // nearest known one.
+        const auto near = refract::cli::suggestion(app, argc, argv);
+        std::cerr << "refract: " << refract::cli::printable(near ? *near : std::string(e.what())) << "\n";
         return 2;
     } catch (const refract::InputError& e) {
         std::cerr << "refract: " << refract::cli::printable(e.what()) << "\n";

@@ -1,5 +1,6 @@
 // refract render SCENE.json -o IMAGE [--threads N] [--stats]
 #include <filesystem>
+#include <optional>
 #include <iostream>
 #include <sstream>
 
@@ -22,6 +23,7 @@ struct RenderArgs {
     bool full_plane_loop = false;
     bool no_lanes = false;
     std::uint64_t max_memory = 0;
+    std::optional<std::uint64_t> seed;
 };
 
 // OUT.stem + suffix beside OUT (OUT.lost.exr, OUT.spectral.exr).
@@ -65,6 +67,9 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     sub->add_option("--threads", args->threads, "Worker threads (0: all cores); the image does not depend on it")
         ->check(refract::cli::thread_range());
     refract::cli::add_max_memory(sub, args->max_memory);
+    sub->add_option("--seed", args->seed, "Random seed of the stochastic integrator and of jitter (default: the "
+                                          "scene's render.seed)")
+        ->check(CLI::NonNegativeNumber);
     sub->add_flag("--stats", args->stats, "Print ray, tree and list counters");
     sub->add_flag("--linear16", args->linear16, "PNG output as 16-bit linear instead of 8-bit sRGB");
     sub->add_flag("--spectral-channels", args->spectral,
@@ -81,7 +86,8 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
                   "instead of in packets of 8 (the same image to the last bit, slower; for comparison)");
     sub->callback([args] {
         refract::check_image_path(args->output);  // before the work, not after it
-        const refract::Scene scene = refract::load_scene(args->scene);
+        refract::Scene scene = refract::load_scene(args->scene);
+        if (args->seed) scene.settings.seed = *args->seed;
         // Every file the render writes, checked before the work too: the image, then the
         // sidecars its options and the scene ask for.
         std::vector<std::string> outputs{args->output};

@@ -167,12 +167,14 @@ refract::cli::Registrar reg{35, [](CLI::App& app) {
         sub->add_option(sw::option_name(p), a->ranges[k],
                         "START:STOP:STEP (inclusive) or one value, " + std::string(units[k]));
     }
-    sub->add_option("-o,--output", a->output, "Output CSV (its journal OUT.journal lets an interrupted sweep resume)");
+    sub->add_option("-o,--output", a->output, "Output CSV (its journal OUT.journal lets an interrupted sweep resume)")
+        ->required();
     sub->add_option("--material", a->material, "Material (catalogue name, core/spectrum/dispersion.h)");
     sub->add_option("--rays", a->rays, "Eye rays per metric")->check(CLI::Range(16, 1 << 26));  // gem_metrics::validate: from 16
     sub->add_option("--wavelengths", a->wavelengths, "Spectral bands, 400..700 nm")->check(CLI::Range(1, 301));
     sub->add_option("--polarisation", a->polarisation, "exact (Stokes-Mueller) or natural");
-    sub->add_option("--seed", a->seed, "Base seed (each cut's seed derives from it and the cut's parameters)");
+    sub->add_option("--seed", a->seed, "Base seed (each cut's seed derives from it and the cut's parameters)")
+        ->check(CLI::NonNegativeNumber);
     sub->add_option("--threads", a->threads, "Worker threads per process (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quiet", a->quiet, "No progress line");
     sub->callback([a] { run(*a); });

@@ -43,7 +43,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_option("--random", args->random,
                     "Generate N random compat scenes, compare each with POV-Ray, shrink failures to minimal cases")
         ->check(CLI::Range(0, 1000000));
-    sub->add_option("--seed", args->seed, "--random: generator seed of the first scene (scene k has seed S + k)");
+    sub->add_option("--seed", args->seed, "--random: generator seed of the first scene (scene k has seed S + k)")
+        ->check(CLI::NonNegativeNumber);
     sub->add_option("--size", args->size, "--random: image size W H, each 1 to 4096 (80 60)")
         ->expected(2)
         ->check(CLI::Range(1, 4096));

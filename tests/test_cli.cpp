@@ -222,3 +222,57 @@ TEST_CASE("refract trace through calcite: each segment inside names its wave (o/
     CHECK(t.find("\"wave_normal\"") != std::string::npos);
     fs::remove_all(dir);
 }
+
+TEST_CASE("Command-line slips: an unknown command, subcommand or option names the nearest known one; --version",
+          "[cli][errors]") {
+    const fs::path dir = fresh_dir("slips");
+    check_refused(run("rendr scene.json -o x.png", dir), "unknown command 'rendr' (did you mean 'render'?)");
+    check_refused(run("frobnicate", dir), "unknown command 'frobnicate' (see --help)");
+    check_refused(run("cut brillant -o x.obj", dir), "unknown subcommand 'brillant' of 'cut' (did you mean 'brilliant'?)");
+    check_refused(run("render scene.json -o x.png --thread 2", dir), "unknown option '--thread' (did you mean '--threads'?)");
+    check_refused(run("farfield s.json -o d --photon 10", dir), "unknown option '--photon' (did you mean '--photons'?)");
+    // A word far from every option keeps the parser's own message.
+    check_refused(run("render scene.json -o x.png --zzzzzzzz", dir), "--zzzzzzzz");
+    CHECK(!fs::exists(dir / "x.png"));
+
+    const fs::path out = dir / "version.txt";
+    const std::string cmd = std::string(REFRACT_EXE) + " --version >" + out.string() + " 2>&1";
+    CHECK(std::system(cmd.c_str()) == 0);
+    std::ifstream f(out);
+    std::string line;
+    std::getline(f, line);
+    CHECK(line.rfind("refract ", 0) == 0);
+    CHECK(line.size() > 8);
+}
+
+TEST_CASE("render --seed replaces the scene's render.seed; a negative seed is refused, not wrapped", "[cli]") {
+    const fs::path dir = fresh_dir("seed");
+    std::ifstream in(std::string(REFRACT_SOURCE_DIR) + "/scenes/rtiow/convergence_stochastic.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string scene = text.str();
+    const auto set = [&](const std::string& key, const std::string& from, const std::string& to) {
+        const size_t at = scene.find("\"" + key + "\": " + from);
+        REQUIRE(at != std::string::npos);
+        scene.replace(at, key.size() + 4 + from.size(), "\"" + key + "\": " + to);
+    };
+    set("samples", "1024", "4");
+    set("width", "200", "24");
+    set("height", "112", "14");
+    std::ofstream(dir / "s.json") << scene;
+    const auto bytes = [&](const std::string& name) {
+        std::ifstream f(dir / name, std::ios::binary);
+        std::stringstream s;
+        s << f.rdbuf();
+        return s.str();
+    };
+    const std::string s = (dir / "s.json").string();
+    REQUIRE(run("render " + s + " -o " + (dir / "scene7.png").string(), dir).code == 0);
+    REQUIRE(run("render " + s + " --seed 7 -o " + (dir / "seed7.png").string(), dir).code == 0);
+    REQUIRE(run("render " + s + " --seed 8 -o " + (dir / "seed8.png").string(), dir).code == 0);
+    CHECK(bytes("scene7.png") == bytes("seed7.png"));
+    CHECK(bytes("seed7.png") != bytes("seed8.png"));
+    check_refused(run("render " + s + " --seed -1 -o " + (dir / "neg.png").string(), dir), "--seed");
+    check_refused(run("farfield " + s + " --seed -1 -o " + (dir / "ff").string(), dir), "--seed");
+    CHECK(!fs::exists(dir / "neg.png"));
+}
