@@ -4,6 +4,7 @@
 #include <cstring>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 #include <tuple>
 #include <vector>
@@ -138,8 +139,11 @@ private:
 
 }  // namespace
 
-TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_nm,
-                      const PolarisationState* polarisation) {
+namespace {
+
+// The query's checks (the wavelength, a finite ray): the unit direction it is walked along
+// (a unit direction kept as it is: a camera ray traces as it renders).
+Vec3 checked_direction(const Scene& scene_in, const Ray& ray, double wavelength_nm) {
     const std::string f = scene_in.source.empty() ? std::string("scene") : scene_in.source;
     if (wavelength_nm != 0 && !(wavelength_nm >= spectrum::kMinWavelength && wavelength_nm <= spectrum::kMaxWavelength))
         throw InputError(f + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
@@ -148,22 +152,18 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
     const auto unit = unit_vector(ray.dir);
     if (!ray.origin.allFinite() || !unit)
         throw InputError(f + ": the ray needs a finite origin and a finite, non-zero direction");
+    return std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : *unit;
+}
+
+// The record of `ray` (direction `dir`) walked by `tracer` over `scene`.
+TraceRecord walk_record(const SceneTracer& tracer, const Scene& scene, const Ray& ray, const Vec3& dir,
+                        double wavelength_nm, const PolarisationState* polarisation) {
     TraceRecord rec;
     rec.wavelength_nm = wavelength_nm;
-    // A polarised trace needs the interfaces' Mueller matrices: the exact model.
-    std::optional<Scene> exact;
-    if (polarisation && polarisation_model(scene_in) != PolarisationModel::Exact) {
-        exact = scene_in;
-        exact->settings.requested_polarisation = PolarisationModel::Exact;
-    }
-    const Scene& scene = exact ? *exact : scene_in;
-    SceneTracer tracer(scene);
     RenderStats stats;
     TreeLimits limits = tree_limits(scene.settings);
     limits.max_reflections = scene.settings.spectral.max_reflections.value_or(TreeLimits::kUnlimited);
     limits.max_transmissions = scene.settings.spectral.max_transmissions.value_or(TreeLimits::kUnlimited);
-    // A unit direction is kept as it is (a camera ray traces as it renders).
-    const Vec3 dir = std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : *unit;
     const auto walk = [&](auto payload) {
         using P = decltype(payload);
         RayTreeWalkerT<P> walker(tracer, limits, stats);
@@ -179,13 +179,78 @@ TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_n
     return rec;
 }
 
-TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm,
-                        const PolarisationState* polarisation) {
+
+// The scene a polarised trace walks: the exact model (a copy when the scene's is not).
+bool needs_exact_copy(const Scene& scene, const PolarisationState* polarisation) {
+    return polarisation && polarisation_model(scene) != PolarisationModel::Exact;
+}
+Scene exact_copy(const Scene& scene) {
+    Scene exact = scene;
+    exact.settings.requested_polarisation = PolarisationModel::Exact;
+    return exact;
+}
+
+}  // namespace
+
+TraceRecord trace_ray(const Scene& scene_in, const Ray& ray, double wavelength_nm,
+                      const PolarisationState* polarisation) {
+    const Vec3 dir = checked_direction(scene_in, ray, wavelength_nm);
+    std::optional<Scene> exact;
+    if (needs_exact_copy(scene_in, polarisation)) exact = exact_copy(scene_in);
+    const Scene& scene = exact ? *exact : scene_in;
+    const SceneTracer tracer(scene);
+    return walk_record(tracer, scene, ray, dir, wavelength_nm, polarisation);
+}
+
+namespace {
+
+// Pixel (i, j)'s centre ray, the pixel checked against the image.
+Ray pixel_ray(const Scene& scene, int i, int j) {
     const std::string f = scene.source.empty() ? std::string("scene") : scene.source;
     if (i < 0 || j < 0 || i >= scene.camera.width || j >= scene.camera.height)
         throw InputError(f + ": --pixel " + std::to_string(i) + " " + std::to_string(j) + " is outside the " +
                          std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + " image");
-    return trace_ray(scene, scene.camera.ray(i + 0.5, j + 0.5), wavelength_nm, polarisation);
+    return scene.camera.ray(i + 0.5, j + 0.5);
+}
+
+}  // namespace
+
+TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm,
+                        const PolarisationState* polarisation) {
+    return trace_ray(scene, pixel_ray(scene, i, j), wavelength_nm, polarisation);
+}
+
+struct TraceSession::Walk {
+    explicit Walk(const Scene& s) : scene(s), tracer(scene) {}     // the session's scene itself
+    explicit Walk(Scene&& copy) : own(std::move(copy)), scene(*own), tracer(scene) {}  // a model's copy
+    std::optional<Scene> own;
+    const Scene& scene;
+    const SceneTracer tracer;
+};
+
+TraceSession::TraceSession(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
+    if (!scene_) throw std::invalid_argument("TraceSession: no scene");
+}
+
+TraceSession::~TraceSession() = default;
+
+const TraceSession::Walk& TraceSession::walk(bool polarised) const {
+    const bool exact = polarised && polarisation_model(*scene_) != PolarisationModel::Exact;
+    const size_t k = exact ? 1 : 0;
+    std::call_once(once_[k], [&] {
+        walks_[k] = exact ? std::make_unique<Walk>(exact_copy(*scene_)) : std::make_unique<Walk>(*scene_);
+    });
+    return *walks_[k];
+}
+
+TraceRecord TraceSession::ray(const Ray& ray, double wavelength_nm, const PolarisationState* polarisation) const {
+    const Vec3 dir = checked_direction(*scene_, ray, wavelength_nm);
+    const Walk& w = walk(polarisation != nullptr);
+    return walk_record(w.tracer, w.scene, ray, dir, wavelength_nm, polarisation);
+}
+
+TraceRecord TraceSession::pixel(int i, int j, double wavelength_nm, const PolarisationState* polarisation) const {
+    return ray(pixel_ray(*scene_, i, j), wavelength_nm, polarisation);
 }
 
 }  // namespace refract

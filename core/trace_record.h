@@ -5,6 +5,8 @@
 // inside a uniaxial crystal the wave (o or e) and its index.
 // `refract trace` writes it as JSON (docs/scene-format.md, "Tracing one ray").
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -78,5 +80,31 @@ TraceRecord trace_ray(const Scene& scene, const Ray& ray, double wavelength_nm =
 // The same for the centre of pixel (i, j).
 TraceRecord trace_pixel(const Scene& scene, int i, int j, double wavelength_nm = 0,
                         const PolarisationState* polarisation = nullptr);
+
+// One scene's tracers, built once and kept for many queries: trace_ray() and trace_pixel()
+// build the tracer (its acceleration structures, a gem's facet graphs) for every call, a
+// session on its first query in each walk (the scene's own model, and the exact one for a
+// polarised trace). The same records as those functions; queries may run from several
+// threads at once.
+class TraceSession {
+public:
+    explicit TraceSession(std::shared_ptr<const Scene> scene);
+    ~TraceSession();
+    TraceSession(const TraceSession&) = delete;
+    TraceSession& operator=(const TraceSession&) = delete;
+
+    TraceRecord ray(const Ray& ray, double wavelength_nm = 0, const PolarisationState* polarisation = nullptr) const;
+    TraceRecord pixel(int i, int j, double wavelength_nm = 0, const PolarisationState* polarisation = nullptr) const;
+    const Scene& scene() const { return *scene_; }
+
+    struct Walk;  // a scene as walked (its own model, or the exact one) and its tracer
+
+private:
+    const Walk& walk(bool polarised) const;
+
+    std::shared_ptr<const Scene> scene_;
+    mutable std::once_flag once_[2];
+    mutable std::unique_ptr<Walk> walks_[2];
+};
 
 }  // namespace refract

@@ -211,3 +211,38 @@ TEST_CASE("Path record under the physical mode's default (exact polarisation) su
     const TraceRecord r = trace_pixel(c, 4, 3);
     CHECK((r.radiance - render_pixel(c, 4, 3)).cwiseAbs().maxCoeff() == 0.0);
 }
+
+TEST_CASE("Trace session: the tracers built once give every query trace_ray's record to the last bit", "[trace]") {
+    const auto s = std::make_shared<const Scene>(
+        sphere_on_floor({{"type", "dielectric"}, {"ior", 1.5168}, {"dispersion", "BK7"}}));
+    const TraceSession session(s);
+    PolarisationState linear;
+    linear.kind = PolarisationState::Kind::Linear;
+    linear.angle_deg = 30;
+    const auto same = [](const TraceRecord& a, const TraceRecord& b) {
+        REQUIRE(a.segments.size() == b.segments.size());
+        CHECK(a.radiance == b.radiance);
+        for (size_t k = 0; k < a.segments.size(); ++k) {
+            const TraceSegment &x = a.segments[k], &y = b.segments[k];
+            CHECK(x.ray.origin == y.ray.origin);
+            CHECK(x.ray.dir == y.ray.dir);
+            CHECK(x.weight == y.weight);
+            CHECK(x.event == y.event);
+            CHECK(x.Rs == y.Rs);
+            CHECK(x.Rp == y.Rp);
+            CHECK(x.light == y.light);
+            CHECK(x.stokes == y.stokes);
+        }
+    };
+    for (int rep = 0; rep < 2; ++rep) {  // the second round on the kept tracers
+        for (const auto& [i, j] : {std::pair{20, 14}, std::pair{22, 9}, std::pair{5, 25}}) {
+            same(session.pixel(i, j), trace_pixel(*s, i, j));
+            same(session.pixel(i, j, 550), trace_pixel(*s, i, j, 550));
+            same(session.pixel(i, j, 480, &linear), trace_pixel(*s, i, j, 480, &linear));
+        }
+    }
+    const Ray r{Vec3(0, 1, -5), Vec3(0.05, 0, 1)};
+    same(session.ray(r, 600), trace_ray(*s, r, 600));
+    CHECK_THROWS_AS(session.pixel(40, 0), InputError);
+    CHECK_THROWS_AS(session.ray(r, 100), InputError);
+}

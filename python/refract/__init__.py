@@ -118,12 +118,24 @@ def trace(scene_, origin, direction, wavelength=None, polarisation=None):
     has "stokes" (S0..S3, fractions of the ray's power, in the frame x = "stokes_x" across the
     node's direction, y = direction x x; docs/polarisation.md), and "weight" is the colour
     weight times S0."""
-    return RayTree(*_refract.trace_ray(scene(scene_), origin, direction, wavelength, polarisation))
+    return RayTree(*_session(scene(scene_), polarisation).ray(origin, direction, wavelength, polarisation))
 
 
 def trace_pixel(scene_, x, y, wavelength=None, polarisation=None):
     """The tree of the ray through the centre of pixel (x, y) (polarisation as in trace)."""
-    return RayTree(*_refract.trace_pixel(scene(scene_), x, y, wavelength, polarisation))
+    return RayTree(*_session(scene(scene_), polarisation).pixel(x, y, wavelength, polarisation))
+
+
+def _session(s, polarisation):
+    """The scene's tracers, built on its first trace and kept on the Scene: pass a Scene
+    (refract.scene(...)) rather than a path or a dict to trace many rays quickly."""
+    natural = isinstance(polarisation, str) and polarisation == "natural"
+    key = "_trace_natural" if natural else "_trace_session"
+    session = getattr(s, key, None)
+    if session is None:
+        session = _refract.TraceSession(s, natural)
+        setattr(s, key, session)
+    return session
 
 
 def n(name, wavelength_nm):

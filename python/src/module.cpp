@@ -274,15 +274,6 @@ TraceModel check_polarisation(const py::handle& p) {
     return {parse_polarisation_state(to_json(p.cast<py::dict>(), "", "trace"), "trace"), false};
 }
 
-// `trace(scene, state)` with the scene as the model asks: a copy with natural light for "natural".
-template <class F>
-TraceRecord traced(const Scene& s, const TraceModel& m, F&& trace) {
-    if (!m.natural || polarisation_model(s) == PolarisationModel::Natural)
-        return trace(s, m.state ? &*m.state : nullptr);
-    Scene natural = s;
-    natural.settings.requested_polarisation = PolarisationModel::Natural;
-    return trace(natural, nullptr);
-}
 
 }  // namespace
 }  // namespace refract::python
@@ -296,7 +287,7 @@ PYBIND11_MODULE(_refract, m) {
     // Bad input: refract.InputError, a ValueError, with core's one-line message.
     py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
 
-    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A validated scene (docs/scene-format.md)")
+    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", py::dynamic_attr(), "A validated scene (docs/scene-format.md)")
         .def_property_readonly("source", [](const Scene& s) { return s.source; })
         .def_property_readonly("width", [](const Scene& s) { return s.camera.width; })
         .def_property_readonly("height", [](const Scene& s) { return s.camera.height; })
@@ -337,28 +328,36 @@ PYBIND11_MODULE(_refract, m) {
           py::arg("scene"), py::arg("threads") = 0, py::arg("spectral_channels") = false, py::arg("lost_energy") = false,
           py::arg("max_memory") = 0, py::arg("progress") = false);
 
-    m.def("trace_ray",
-          [](const Scene& s, const py::handle& origin, const py::handle& direction, const py::handle& wavelength,
-             const py::handle& polarisation) {
-              const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
-              const double nm = check_wavelength(wavelength);
-              const TraceModel pol = check_polarisation(polarisation);
-              return trace_result(without_gil([&] {
-                  return traced(s, pol, [&](const Scene& sc, const PolarisationState* p) { return trace_ray(sc, Ray{o, d}, nm, p); });
-              }));
-          },
-          py::arg("scene"), py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none(),
-          py::arg("polarisation") = py::none());
-    m.def("trace_pixel",
-          [](const Scene& s, int i, int j, const py::handle& wavelength, const py::handle& polarisation) {
-              const double nm = check_wavelength(wavelength);
-              const TraceModel pol = check_polarisation(polarisation);
-              return trace_result(without_gil([&] {
-                  return traced(s, pol, [&](const Scene& sc, const PolarisationState* p) { return trace_pixel(sc, i, j, nm, p); });
-              }));
-          },
-          py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none(),
-          py::arg("polarisation") = py::none());
+    // A scene's tracers built once for many traces (core/trace_record.h TraceSession);
+    // `natural`: the walk with natural light whatever the scene's model.
+    py::class_<TraceSession, std::shared_ptr<TraceSession>>(m, "TraceSession")
+        .def(py::init([](const std::shared_ptr<Scene>& s, bool natural) {
+                 if (!natural || polarisation_model(*s) == PolarisationModel::Natural)
+                     return std::make_shared<TraceSession>(s);
+                 auto copy = std::make_shared<Scene>(*s);
+                 copy->settings.requested_polarisation = PolarisationModel::Natural;
+                 return std::make_shared<TraceSession>(copy);
+             }),
+             py::arg("scene"), py::arg("natural") = false)
+        .def("ray",
+             [](const TraceSession& t, const py::handle& origin, const py::handle& direction, const py::handle& wavelength,
+                const py::handle& polarisation) {
+                 const Vec3 o = to_vec3(origin, "trace: origin"), d = to_vec3(direction, "trace: direction");
+                 const double nm = check_wavelength(wavelength);
+                 const TraceModel pol = check_polarisation(polarisation);
+                 const PolarisationState* state = pol.state ? &*pol.state : nullptr;
+                 return trace_result(without_gil([&] { return t.ray(Ray{o, d}, nm, state); }));
+             },
+             py::arg("origin"), py::arg("direction"), py::arg("wavelength") = py::none(),
+             py::arg("polarisation") = py::none())
+        .def("pixel",
+             [](const TraceSession& t, int i, int j, const py::handle& wavelength, const py::handle& polarisation) {
+                 const double nm = check_wavelength(wavelength);
+                 const TraceModel pol = check_polarisation(polarisation);
+                 const PolarisationState* state = pol.state ? &*pol.state : nullptr;
+                 return trace_result(without_gil([&] { return t.pixel(i, j, nm, state); }));
+             },
+             py::arg("x"), py::arg("y"), py::arg("wavelength") = py::none(), py::arg("polarisation") = py::none());
 
     m.def("write_image",
           [](const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& rgb,
