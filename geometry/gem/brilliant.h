@@ -81,6 +81,7 @@ struct Gem {
     TriangleMesh mesh;               // facets fan-triangulated, vertices shared
     std::vector<int> triangle_facet; // facet index of each mesh triangle
     BrilliantProportions measured;   // measured back from the exact polyhedron
+    std::string description;         // written files' header comment; empty: the brilliant's
 };
 
 // Validates, then builds the cut exactly (CGAL) and converts to doubles at the end.
