@@ -16,6 +16,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::uintmax_t kMaxDesignBytes = std::uintmax_t{1} << 20;
 constexpr int kMaxGear = 1000;
+constexpr std::size_t kMaxFacets = 4096;
 
 struct Line {
     const std::string& source;
@@ -110,12 +111,15 @@ GemcadDesign parse_gemcad(const std::string& text, const std::string& source) {
     std::string s;
     int number = 0;
     bool gear_seen = false;
+    std::size_t facets = 0;
     while (std::getline(in, s)) {
         ++number;
         const Line line{source, number};
         if (!s.empty() && s.back() == '\r') s.pop_back();
         if (number == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s.erase(0, 3);  // UTF-8 byte-order mark
-        if (s.find_first_not_of(" \t") == std::string::npos) continue;
+        const auto first = s.find_first_not_of(" \t");
+        if (first == std::string::npos) continue;
+        s.erase(0, first);
         if (s.rfind("GemCad", 0) == 0) {
             d.version = s;
             continue;
@@ -159,6 +163,9 @@ GemcadDesign parse_gemcad(const std::string& text, const std::string& source) {
             case 'a':
                 if (!gear_seen) line.fail("a tier before the gear line 'g'");
                 parse_tier(f, line, d);
+                facets += d.tiers.back().indices.size();
+                if (facets > kMaxFacets)
+                    line.fail("more than " + std::to_string(kMaxFacets) + " facets (refract's limit for a design)");
                 break;
             default:
                 line.fail("unknown keyword '" + clip_echo(std::string(1, key)) +

@@ -62,7 +62,7 @@ struct GemcadDesign {
 // Parses .asc text; InputError "SOURCE: line N: ..." for a truncated line, an unknown keyword,
 // a non-finite or out-of-range number, a gear index out of range, or no tier at all.
 GemcadDesign parse_gemcad(const std::string& text, const std::string& source);
-// Reads and parses a file (at most 1 MiB).
+// Reads and parses a file (at most 1 MiB and 4 096 facets).
 GemcadDesign read_gemcad(const std::string& path);
 // The design as .asc text (numbers with 17 significant digits: it parses back to the same doubles).
 std::string gemcad_text(const GemcadDesign& design);
