@@ -152,7 +152,7 @@ TEST_CASE("Bad GemCad designs are refused with one line naming the file and the 
     refused("g 96 0\na -90 1 0 48\na 0 0.5 0\na -0 0.5 0\n", "unbounded towards +x");
 }
 
-TEST_CASE("A gem design in a scene is placed like the brilliant: the brilliant's .asc with diameter 2 gives its "
+TEST_CASE("A gem design in a scene is placed like the brilliant: the brilliant's .asc with the same diameter gives its "
           "planes within 1e-9",
           "[gemcad][scene]") {
     const fs::path dir = refract::test::fresh_dir("gemcad", "scene");

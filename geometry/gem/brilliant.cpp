@@ -1,4 +1,4 @@
-// The exact round-brilliant construction: the one translation unit that includes CGAL.
+// The exact round-brilliant construction (CGAL; the half-space intersection is exact_hull.cpp).
 // Planes go through exactly constructed points (CGAL's Exact_predicates_exact_constructions
 // kernel), so the points where four to eight facets meet are single points, not clusters
 // joined by 1e-17 edges; CGAL::halfspace_intersection_3 gives the polyhedron, one polygon per

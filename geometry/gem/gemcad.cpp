@@ -233,7 +233,11 @@ GemcadDesign brilliant_design(const Gem& gem) {
         for (char& ch : kind)
             if (ch == ' ') ch = '_';
         GemcadTier* t = d.tiers.empty() ? nullptr : &d.tiers.back();
-        if (!t || kind != last_kind || t->angle != angle || t->pavilion != pavilion || t->distance != f.plane.offset) {
+        // One tier per kind while angle and distance agree to 1e-12 (symmetric facets differ
+        // in their last bits; the tier's values move a plane by far less than the 1e-9 the
+        // design reads back within).
+        if (!t || kind != last_kind || std::fabs(t->angle - angle) > 1e-12 || t->pavilion != pavilion ||
+            std::fabs(t->distance - f.plane.offset) > 1e-12) {
             d.tiers.emplace_back();
             t = &d.tiers.back();
             t->angle = angle;
