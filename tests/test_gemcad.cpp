@@ -198,16 +198,28 @@ TEST_CASE("refract cut asc writes the design's mesh y up; cut brilliant -o x.asc
     std::istringstream obj(read(dir / "b.obj"));
     std::string line;
     double top = -1e300;
-    std::size_t vertices = 0;
+    std::vector<Vec3> vertices;
     while (std::getline(obj, line))
         if (line.rfind("v ", 0) == 0) {
             std::istringstream v(line.substr(2));
             double x, y, z;
             v >> x >> y >> z;
             top = std::max(top, y);
-            ++vertices;
+            vertices.emplace_back(x, y, z);
         }
-    CHECK(vertices == g.mesh.vertices.size());
+    CHECK(vertices.size() == g.mesh.vertices.size());
+    // Loaded as it is, the file is the brilliant a scene places at the origin (diameter 2): every
+    // vertex on the placed polyhedron's boundary.
+    write(dir / "s.json", R"({"camera": {"location": [0, 0, -5]}, "materials": {"g": {"type": "dielectric",
+        "ior": 2.417}}, "objects": [{"type": "brilliant", "material": "g"}]})");
+    const auto& placed = std::get<ConvexPolyhedron>(load_scene((dir / "s.json").string()).objects[0].shape);
+    double worst = 0;
+    for (const Vec3& v : vertices) {
+        double out = -1e300;
+        for (const Plane& p : placed.planes) out = std::max(out, p.normal.dot(v) - p.offset);
+        worst = std::max(worst, std::fabs(out));
+    }
+    CHECK(worst < 1e-12);
     double zmax = -1e300;
     for (const Vec3& v : g.mesh.vertices) zmax = std::max(zmax, v.z());
     CHECK(top == Approx(zmax).epsilon(1e-12));
