@@ -186,7 +186,7 @@ TEST_CASE("A gem design in a scene is placed like the brilliant: the brilliant's
     fs::remove_all(dir);
 }
 
-TEST_CASE("refract cut asc writes the design's mesh y up; cut brilliant -o x.asc round-trips; bad designs exit 2",
+TEST_CASE("refract cut asc writes the design's mesh y up, cut brilliant -o x.asc round-trips, bad designs exit 2",
           "[gemcad][cli]") {
     using refract::test::check_refused;
     using refract::test::run;
