@@ -90,7 +90,11 @@ void run(const CutArgs& a, const CLI::App& sub) {
     std::printf("facets: %zu =", gem.facets.size());
     for (std::size_t i = 0; i < counts.size(); ++i)
         std::printf("%s %s %d", i ? "," : "", counts[i].first.c_str(), counts[i].second);
-    std::printf("\nwrote %s (%zu vertices, girdle radius 1, z up)\n", a.output.c_str(), gem.mesh.vertices.size());
+    const bool design = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".asc") == 0 ||
+                                                  a.output.compare(a.output.size() - 4, 4, ".ASC") == 0);
+    std::printf("\nwrote %s (%s)\n", a.output.c_str(),
+                design ? "GemCad design, girdle radius 1"
+                       : (std::to_string(gem.mesh.vertices.size()) + " vertices, girdle radius 1, y up").c_str());
 }
 
 refract::cli::Registrar reg{40, [](CLI::App& app) {
@@ -112,7 +116,7 @@ refract::cli::Registrar reg{40, [](CLI::App& app) {
     sub->add_option("--girdle-facets", a->girdle_facets, "Girdle facets: 0 = bruted, or a multiple of 16 (16 to 192)");
     sub->add_option("--bruted-planes", a->bruted_planes,
                     "Vertical planes approximating a bruted girdle (multiple of 16, default 64)");
-    sub->add_option("-o,--output", a->output, "Output file: .obj, .off, .ply or .pov")->required();
+    sub->add_option("-o,--output", a->output, "Output file: .obj, .off, .ply, .pov (y up) or .asc (GemCad design)")->required();
     sub->add_flag("--json", a->json, "Print the proportions and facet counts as JSON");
     sub->callback([a, sub] { run(*a, *sub); });
 }};

@@ -23,6 +23,7 @@ public:
     [[noreturn]] void fail(const std::string& what) const;
     [[noreturn]] void fail_at(const std::string& key, const std::string& what) const;
     const std::string& path() const { return path_; }
+    const std::string& file() const { return file_; }
     // A key's path; a key longer than 64 bytes is clipped there (geometry/format.h).
     std::string path_of(const std::string& key) const { return path_ + "/" + clip_echo(key); }
     const nlohmann::json& json() const { return j_; }

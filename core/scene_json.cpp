@@ -9,6 +9,7 @@
 #include <refract/core/compat.h>
 #include <refract/core/integrators/integrator.h>
 #include <refract/core/json_reader.h>
+#include <refract/core/scene_gem.h>
 #include <refract/geometry/gem/brilliant.h>
 #include <refract/geometry/error.h>
 #include <refract/geometry/input_file.h>
@@ -135,9 +136,8 @@ int material_ref(const JsonReader& o, std::vector<Material>& materials, const st
     return static_cast<int>(materials.size()) - 1;
 }
 
-// A round-brilliant gem (geometry/gem/brilliant.h), built exactly, then placed: the cut's
-// axis (z, table up) becomes the scene's +y, then `rotation` (degrees about x, y, z, in
-// that order), scale to `diameter` (girdle diameter) and move to `position`.
+// A round-brilliant gem (geometry/gem/brilliant.h), built exactly, then placed
+// (core/scene_gem.h): scaled to `diameter` (girdle diameter).
 Shape parse_brilliant(const JsonReader& o) {
     o.only({"type", "name", "material", "preset", "table", "crown_angle", "pavilion_angle", "star", "lower_half",
             "girdle", "culet", "girdle_facets", "bruted_planes", "position", "diameter", "rotation"});
@@ -157,21 +157,7 @@ Shape parse_brilliant(const JsonReader& o) {
     } catch (const InputError& e) {
         o.fail(e.what());
     }
-    const double scale = o.positive("diameter", 2.0) / 2.0;
-    const Vec3 pos = o.vec3("position", Vec3(0, 0, 0));
-    const Vec3 rot = o.vec3("rotation", Vec3(0, 0, 0)) * (M_PI / 180.0);
-    const Eigen::Matrix3d M = (Eigen::AngleAxisd(rot.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(rot.y(), Vec3::UnitY()) *
-                               Eigen::AngleAxisd(rot.x(), Vec3::UnitX()) *
-                               Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX())).toRotationMatrix();
-    ConvexPolyhedron c = gem.solid;
-    for (Plane& p : c.planes) {
-        p.normal = (M * p.normal).normalized();
-        p.offset = scale * p.offset + p.normal.dot(pos);
-    }
-    std::vector<Vec3> placed;
-    for (const Vec3& v : gem.mesh.vertices) placed.push_back(scale * (M * v) + pos);
-    set_bound(c, placed);
-    return c;
+    return place_gem(gem, o.positive("diameter", 2.0) / 2.0, o);
 }
 
 Shape parse_shape(const JsonReader& o, const std::string& type) {
@@ -239,7 +225,8 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
         return c;
     }
     if (type == "brilliant") return parse_brilliant(o);
-    o.fail_at("type", "unknown object type '" + clip_echo(type) + "' (sphere, plane, mesh, polyhedron, brilliant)");
+    if (type == "gem") return parse_gem_design(o);
+    o.fail_at("type", "unknown object type '" + clip_echo(type) + "' (sphere, plane, mesh, polyhedron, brilliant, gem)");
 }
 
 SpectralSettings parse_spectral(const JsonReader& r, const std::string& file) {

@@ -1,29 +1,26 @@
-// The exact round-brilliant construction: the one translation unit that includes CGAL.
+// The exact round-brilliant construction (CGAL; the half-space intersection is exact_hull.cpp).
 // Planes go through exactly constructed points (CGAL's Exact_predicates_exact_constructions
 // kernel), so the points where four to eight facets meet are single points, not clusters
 // joined by 1e-17 edges; CGAL::halfspace_intersection_3 gives the polyhedron, one polygon per
 // plane; we drop repeated and collinear vertices, measure the proportions on the exact result,
 // and convert to double only at the end. The construction is described in docs/gems.md.
-#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
 
 #include <refract/geometry/error.h>
 #include <refract/geometry/gem/brilliant.h>
+#include <refract/geometry/gem/exact_hull.h>
 
 namespace refract {
 namespace {
 
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
-using FT = K::FT;
-using P3 = K::Point_3;
-using V3 = K::Vector_3;
-using Pl = K::Plane_3;
-using Loop = std::vector<P3>;
+using exact::dbl;
+using exact::FT;
+using exact::Loop;
+using exact::P3;
+using exact::Pl;
+using exact::V3;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -31,27 +28,8 @@ constexpr double kPi = 3.14159265358979323846;
     throw InputError("brilliant cut: these parameters give a degenerate brilliant (" + why + ")");
 }
 
-// The nearest double of an exact number (forces the exact value, so the lazy interval is tight).
-double dbl(const FT& x) { return CGAL::to_double(CGAL::exact(x)); }
-
-// cos and sin of an angle in degrees, reduced to the first quadrant so that the four
-// quadrants are exact mirror images and multiples of 90° are exact.
-struct Dir {
-    double c, s;
-};
-Dir unit(double deg) {
-    deg = std::fmod(deg, 360.0);
-    if (deg < 0) deg += 360.0;
-    const int q = static_cast<int>(deg / 90.0);
-    const double r = (deg - 90.0 * q) * kPi / 180.0;
-    const double c = std::cos(r), s = std::sin(r);
-    switch (q & 3) {
-        case 0: return {c, s};
-        case 1: return {-s, c};
-        case 2: return {-c, -s};
-        default: return {s, -c};
-    }
-}
+using exact::Dir;
+using exact::unit;
 
 P3 meet(const Pl& a, const Pl& b, const Pl& c) {
     const auto r = CGAL::intersection(a, b, c);
@@ -146,28 +124,6 @@ Construction construct(const BrilliantCut& cut) {
     return out;
 }
 
-// Removes repeated vertices (where four or more planes meet, the dual hull is triangulated
-// and the primal face repeats the vertex) and vertices in the middle of a straight edge.
-void clean(Loop& loop) {
-    Loop out;
-    for (const P3& p : loop)
-        if (out.empty() || out.back() != p) out.push_back(p);
-    while (out.size() > 1 && out.front() == out.back()) out.pop_back();
-    bool changed = true;
-    while (changed && out.size() >= 3) {
-        changed = false;
-        for (std::size_t i = 0; i < out.size(); ++i) {
-            const std::size_t n = out.size();
-            if (CGAL::collinear(out[(i + n - 1) % n], out[i], out[(i + 1) % n])) {
-                out.erase(out.begin() + static_cast<long>(i));
-                changed = true;
-                break;
-            }
-        }
-    }
-    loop.swap(out);
-}
-
 // Expected polygon sizes; a mismatch means the parameters slipped past validation into a
 // different combinatorial cut, which we refuse rather than hand on.
 int expected_vertices(const std::string& kind, const std::string& label, const BrilliantCut& cut) {
@@ -250,40 +206,13 @@ BrilliantProportions measure(const std::map<std::string, Loop>& faces, const std
     return m;
 }
 
-struct LessXYZ {
-    bool operator()(const P3& a, const P3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
-};
-
 }  // namespace
 
 Gem build_brilliant(const BrilliantCut& cut) {
     validate(cut);
     const Construction con = construct(cut);
 
-    CGAL::Surface_mesh<P3> hull;
-    try {
-        CGAL::halfspace_intersection_3(con.planes.begin(), con.planes.end(), hull,
-                                       boost::optional<P3>(P3(CGAL::ORIGIN)));
-    } catch (const CGAL::Failure_exception& e) {
-        degenerate(std::string("CGAL: ") + e.what());
-    }
-
-    // One polygon per plane: identify each face's plane by exact incidence.
-    std::vector<Loop> loops(con.planes.size());
-    for (auto f : hull.faces()) {
-        Loop loop;
-        for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) loop.push_back(hull.point(v));
-        clean(loop);
-        if (loop.size() < 3) continue;  // a plane touching the gem in a point or an edge
-        std::size_t i = 0;
-        while (i < con.planes.size() &&
-               !(con.planes[i].has_on(loop[0]) && con.planes[i].has_on(loop[1]) && con.planes[i].has_on(loop[2])))
-            ++i;
-        if (i == con.planes.size() || !loops[i].empty()) degenerate("a face matches no single facet plane");
-        const V3 n = CGAL::cross_product(loop[1] - loop[0], loop[2] - loop[1]);
-        if (n * con.planes[i].orthogonal_vector() < 0) std::reverse(loop.begin(), loop.end());
-        loops[i] = std::move(loop);
-    }
+    const std::vector<Loop> loops = exact::facet_loops(con.planes, P3(CGAL::ORIGIN), degenerate);
 
     std::map<std::string, Loop> faces;
     std::map<std::string, Pl> planes;
@@ -306,35 +235,7 @@ Gem build_brilliant(const BrilliantCut& cut) {
     gem.cut = cut;
     gem.measured = measure(faces, planes);
 
-    // To doubles: shared vertices (exactly equal points become one vertex), unit planes.
-    std::map<P3, int, LessXYZ> ids;
-    for (std::size_t i = 0; i < loops.size(); ++i) {
-        if (loops[i].empty()) continue;
-        GemFacet f;
-        f.label = con.labels[i];
-        const Pl& p = con.planes[i];
-        const double a = dbl(p.a()), b = dbl(p.b()), c = dbl(p.c()), d = dbl(p.d());
-        const double norm = std::sqrt(a * a + b * b + c * c);
-        f.plane.normal = Vec3(a, b, c) / norm;
-        f.plane.offset = -d / norm;
-        for (const P3& q : loops[i]) {
-            auto it = ids.find(q);
-            if (it == ids.end()) {
-                it = ids.emplace(q, static_cast<int>(gem.mesh.vertices.size())).first;
-                gem.mesh.vertices.emplace_back(dbl(q.x()), dbl(q.y()), dbl(q.z()));
-            }
-            f.vertex_ids.push_back(it->second);
-            f.polygon.push_back(gem.mesh.vertices[static_cast<std::size_t>(it->second)]);
-        }
-        const int facet = static_cast<int>(gem.facets.size());
-        for (std::size_t v = 1; v + 1 < f.vertex_ids.size(); ++v) {
-            gem.mesh.triangles.emplace_back(f.vertex_ids[0], f.vertex_ids[v], f.vertex_ids[v + 1]);
-            gem.triangle_facet.push_back(facet);
-        }
-        gem.solid.planes.push_back(f.plane);
-        gem.solid.labels.push_back(f.label);
-        gem.facets.push_back(std::move(f));
-    }
+    exact::append_facets(gem, con.planes, con.labels, loops);
     return gem;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The round brilliant cut: parameters, named presets, validation, and the exact construction.
-// Plain doubles here: the construction (brilliant.cpp) is the one translation unit that uses
-// CGAL's exact kernel; callers get unit outward double planes with facet labels, facet
+// Plain doubles here: the construction (brilliant.cpp, with the half-space intersection of
+// exact_hull.cpp) uses CGAL's exact kernel; callers get unit outward double planes with facet labels, facet
 // polygons and a triangle mesh. The built gem has girdle radius R = 1 (diameter D = 2),
 // z up, table at the top; callers scale and place it.
 //
@@ -81,6 +81,7 @@ struct Gem {
     TriangleMesh mesh;               // facets fan-triangulated, vertices shared
     std::vector<int> triangle_facet; // facet index of each mesh triangle
     BrilliantProportions measured;   // measured back from the exact polyhedron
+    std::string description;         // written files' header comment; empty: the brilliant's
 };
 
 // Validates, then builds the cut exactly (CGAL) and converts to doubles at the end.

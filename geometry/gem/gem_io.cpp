@@ -11,19 +11,26 @@
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
 #include <refract/geometry/gem/gem_io.h>
+#include <refract/geometry/gem/gemcad.h>
 
 namespace refract {
 namespace {
 
 std::string g17(double v) { return format_significant(v == 0 ? 0.0 : v, 17); }  // no "-0"
-std::string xyz(const Vec3& p, const char* sep = " ") { return g17(p.x()) + sep + g17(p.y()) + sep + g17(p.z()); }
+// The gem's frame (z up) to the scene's (y up): a quarter turn about x, exact.
+Vec3 y_up(const Vec3& p) { return Vec3(p.x(), p.z(), -p.y()); }
+std::string xyz(const Vec3& q, const char* sep = " ") {
+    const Vec3 p = y_up(q);
+    return g17(p.x()) + sep + g17(p.y()) + sep + g17(p.z());
+}
 
 std::string header_comment(const Gem& gem) {
+    if (!gem.description.empty()) return gem.description + "; y up; " + std::to_string(gem.facets.size()) + " facets";
     const BrilliantCut& c = gem.cut;
     std::ostringstream s;
     s << "round brilliant by refract: table " << c.table << " %, crown " << c.crown_angle << " deg, pavilion "
       << c.pavilion_angle << " deg, star " << c.star << " %, lower half " << c.lower_half << " %, girdle "
-      << c.girdle << " % (" << girdle_description(c) << "), culet " << c.culet << " %; girdle radius 1, z up; "
+      << c.girdle << " % (" << girdle_description(c) << "), culet " << c.culet << " %; girdle radius 1, y up; "
       << gem.facets.size() << " facets";
     return s.str();
 }
@@ -95,9 +102,10 @@ void write_gem(const Gem& gem, const std::string& path) {
     else if (ext == ".off") text = off(gem);
     else if (ext == ".ply") text = ply(gem);
     else if (ext == ".pov") text = pov_gem_declaration(gem);
+    else if (ext == ".asc" && gem.description.empty()) text = gemcad_text(brilliant_design(gem));
     else
         throw InputError("output file '" + path + "': unknown extension '" + ext +
-                         "' (allowed: .obj, .off, .ply, .pov)");
+                         "' (allowed: .obj, .off, .ply, .pov" + (gem.description.empty() ? ", .asc" : "") + ")");
     write_file_atomic(path, text);  // geometry/atomic_file.h: the one atomic writer
 }
 

@@ -1,0 +1,248 @@
+// A GemCad design built exactly (gemcad.h): every tier's facets become exact planes (their
+// double coefficients taken as exact numbers), the stone is their half-space intersection
+// (exact_hull.h, the brilliant's machinery), then it is checked closed and convex and measured.
+#include <CGAL/Convex_hull_3/dual/halfspace_intersection_interior_point_3.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+#include <refract/geometry/gem/exact_hull.h>
+#include <refract/geometry/gem/gemcad.h>
+
+namespace refract {
+namespace {
+
+using namespace exact;
+
+struct Planes {
+    std::vector<Pl> planes;
+    std::vector<std::string> labels;
+    std::vector<int> tier;  // tier number (1-based) of each plane; 0 for the bounding box
+};
+
+std::string index_text(double i) { return format_shortest(i); }
+
+// The facets of tiers 1..upto, after the six planes of a box far outside every facet (so
+// that the intersection is bounded whatever the tiers are; a box face left on the stone
+// means the tiers do not close it).
+Planes design_planes(const GemcadDesign& d, std::size_t upto) {
+    Planes p;
+    double far = 1;
+    for (const GemcadTier& t : d.tiers) far = std::max(far, std::fabs(t.distance));
+    far *= 1e3;
+    static const char* const kBox[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    for (int k = 0; k < 6; ++k) {
+        const double s = k % 2 ? -1 : 1;
+        const int axis = k / 2;
+        p.planes.emplace_back(axis == 0 ? s : 0.0, axis == 1 ? s : 0.0, axis == 2 ? s : 0.0, -far);
+        p.labels.push_back(kBox[k]);
+        p.tier.push_back(0);
+    }
+    for (std::size_t k = 0; k < upto && k < d.tiers.size(); ++k) {
+        const GemcadTier& t = d.tiers[k];
+        const Dir a = unit(t.angle);  // (cos, sin) of the angle to the girdle plane
+        const double nz = t.pavilion ? -a.c : a.c;
+        for (std::size_t j = 0; j < t.indices.size(); ++j) {
+            const Dir az = unit(360.0 * (t.indices[j] - d.location) / d.gear - 90.0);
+            p.planes.emplace_back(a.s * az.c, a.s * az.s, nz, -t.distance);
+            const std::string name = t.names[j].empty() ? t.name(static_cast<int>(k) + 1) : t.names[j];
+            p.labels.push_back(name + " " + index_text(t.indices[j]));
+            p.tier.push_back(static_cast<int>(k) + 1);
+        }
+    }
+    return p;
+}
+
+std::string tier_text(const GemcadDesign& d, int k) {
+    const GemcadTier& t = d.tiers[static_cast<std::size_t>(k - 1)];
+    return "tier " + std::to_string(k) + " ('" + clip_echo(t.name(k)) + "'" +
+           (t.line > 0 ? ", line " + std::to_string(t.line) : std::string()) + ")";
+}
+
+// A point strictly inside every plane, if the solid has any volume.
+boost::optional<P3> interior_point(const std::vector<Pl>& planes) {
+    bool origin = true;
+    for (const Pl& p : planes) origin = origin && p.has_on_negative_side(P3(CGAL::ORIGIN));
+    if (origin) return P3(CGAL::ORIGIN);
+    const auto q = CGAL::halfspace_intersection_interior_point_3(planes.begin(), planes.end());
+    if (!q) return boost::none;
+    for (const Pl& p : planes)
+        if (!p.has_on_negative_side(*q)) return boost::none;  // a flat (zero-volume) remainder
+    return q;
+}
+
+thread_local std::string t_source;  // the design being built, for fail()
+[[noreturn]] void fail(const std::string& why) {
+    throw InputError(t_source + ": the design's facets give a degenerate stone (" + why + ")");
+}
+
+// Merges vertices closer than `tol` (the slivers left where a design's rounded angles and
+// distances make several facets meet almost, not exactly, in one point), drops facets that
+// shrink below three vertices, and rebuilds the mesh.
+void merge_close_vertices(Gem& gem, double tol) {
+    const auto& v = gem.mesh.vertices;
+    std::vector<int> rep(v.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    const auto find = [&](int i) {
+        while (rep[static_cast<std::size_t>(i)] != i) i = rep[static_cast<std::size_t>(i)];
+        return i;
+    };
+    for (std::size_t i = 0; i < v.size(); ++i)
+        for (std::size_t j = i + 1; j < v.size(); ++j)
+            if ((v[i] - v[j]).norm() < tol) {
+                const int a = find(static_cast<int>(i)), b = find(static_cast<int>(j));
+                if (a != b) rep[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+            }
+    Gem out;
+    out.cut = gem.cut;
+    std::map<int, int> ids;
+    for (const GemFacet& f : gem.facets) {
+        std::vector<int> loop;
+        for (int id : f.vertex_ids) {
+            const int r = find(id);
+            if (loop.empty() || loop.back() != r) loop.push_back(r);
+        }
+        while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+        if (loop.size() < 3) continue;
+        GemFacet g;
+        g.label = f.label;
+        g.plane = f.plane;
+        for (int r : loop) {
+            auto it = ids.find(r);
+            if (it == ids.end()) {
+                it = ids.emplace(r, static_cast<int>(out.mesh.vertices.size())).first;
+                out.mesh.vertices.push_back(v[static_cast<std::size_t>(r)]);
+            }
+            g.vertex_ids.push_back(it->second);
+            g.polygon.push_back(v[static_cast<std::size_t>(r)]);
+        }
+        const int facet = static_cast<int>(out.facets.size());
+        for (std::size_t k = 1; k + 1 < g.vertex_ids.size(); ++k) {
+            out.mesh.triangles.emplace_back(g.vertex_ids[0], g.vertex_ids[k], g.vertex_ids[k + 1]);
+            out.triangle_facet.push_back(facet);
+        }
+        out.solid.planes.push_back(g.plane);
+        out.solid.labels.push_back(g.label);
+        out.facets.push_back(std::move(g));
+    }
+    gem = std::move(out);
+}
+
+// Closed (every edge shared by exactly two facets, in opposite directions; Euler
+// characteristic 2) and convex (every vertex on or inside every facet plane, within `tol`).
+void check_closed_convex(const Gem& gem, double tol) {
+    std::map<std::pair<int, int>, int> edges;
+    for (const GemFacet& f : gem.facets)
+        for (std::size_t k = 0; k < f.vertex_ids.size(); ++k)
+            ++edges[{f.vertex_ids[k], f.vertex_ids[(k + 1) % f.vertex_ids.size()]}];
+    for (const auto& [e, n] : edges) {
+        const auto back = edges.find({e.second, e.first});
+        if (n != 1 || back == edges.end() || back->second != 1)
+            fail("the facets do not close: an edge is not shared by exactly two facets");
+    }
+    const long V = static_cast<long>(gem.mesh.vertices.size()), E = static_cast<long>(edges.size() / 2),
+               F = static_cast<long>(gem.facets.size());
+    if (V - E + F != 2) fail("Euler characteristic " + std::to_string(V - E + F) + ", not 2");
+    for (const GemFacet& f : gem.facets)
+        for (const Vec3& p : gem.mesh.vertices)
+            if (f.plane.normal.dot(p) - f.plane.offset > tol)
+                fail("not convex: a vertex lies outside facet '" + f.label + "'");
+}
+
+struct Extent {
+    double width, length;
+};
+
+// The narrowest caliper width of the points seen along z, and the extent across it.
+Extent caliper(const std::vector<Vec3>& pts) {
+    std::vector<std::array<double, 2>> p;
+    for (const Vec3& q : pts) p.push_back({q.x(), q.y()});
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    const auto cross = [](const std::array<double, 2>& o, const std::array<double, 2>& a,
+                          const std::array<double, 2>& b) {
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    };
+    std::vector<std::array<double, 2>> h(2 * p.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {  // Andrew's monotone chain
+        while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+        while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    h.resize(k > 0 ? k - 1 : 0);
+    Extent best{std::numeric_limits<double>::infinity(), 0};
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        const auto& a = h[i];
+        const auto& b = h[(i + 1) % h.size()];
+        const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
+        if (len == 0) continue;
+        double w = 0, lo = 0, hi = 0;
+        for (const auto& q : h) {
+            w = std::max(w, std::fabs(ex * (q[1] - a[1]) - ey * (q[0] - a[0])) / len);
+            const double along = (ex * (q[0] - a[0]) + ey * (q[1] - a[1])) / len;
+            lo = std::min(lo, along);
+            hi = std::max(hi, along);
+        }
+        if (w < best.width) best = {w, hi - lo};
+    }
+    return best;
+}
+
+}  // namespace
+
+DesignGem build_design(const GemcadDesign& d) {
+    t_source = d.source;
+    const Planes all = design_planes(d, d.tiers.size());
+    const auto inside = interior_point(all.planes);
+    if (!inside) {
+        // Name the first tier after which nothing (of any volume) is left.
+        for (std::size_t k = 1; k <= d.tiers.size(); ++k)
+            if (!interior_point(design_planes(d, k).planes))
+                throw InputError(d.source + ": " + tier_text(d, static_cast<int>(k)) +
+                                 " cuts the stone away: nothing of the stone is left");
+        throw InputError(d.source + ": the facets cut the stone away: nothing is left");
+    }
+    const std::vector<Loop> loops = facet_loops(all.planes, *inside, fail);
+    for (int k = 0; k < 6; ++k)
+        if (!loops[static_cast<std::size_t>(k)].empty())
+            throw InputError(d.source + ": the tiers do not close the stone: it is unbounded towards " + all.labels[k] +
+                             " (" + (k == 4 ? "no crown facet or table" : k == 5 ? "no pavilion facet or culet" : "no girdle facet") +
+                             " closes that side)");
+
+    DesignGem out;
+    out.planes = static_cast<int>(all.planes.size()) - 6;
+    FT volume = 0;
+    for (const Loop& l : loops)
+        for (std::size_t k = 1; k + 1 < l.size(); ++k)
+            volume += CGAL::determinant(l[0] - CGAL::ORIGIN, l[k] - CGAL::ORIGIN, l[k + 1] - CGAL::ORIGIN);
+    out.volume = dbl(volume / 6);
+
+    append_facets(out.gem, all.planes, all.labels, loops);
+    double size = 0;
+    for (const Vec3& v : out.gem.mesh.vertices) size = std::max(size, v.norm());
+    merge_close_vertices(out.gem, 1e-7 * size);
+    check_closed_convex(out.gem, 1e-9 * size);
+
+    const Extent e = caliper(out.gem.mesh.vertices);
+    out.width = e.width;
+    out.length = e.length;
+    double zlo = out.gem.mesh.vertices.front().z(), zhi = zlo;
+    for (const Vec3& v : out.gem.mesh.vertices) {
+        zlo = std::min(zlo, v.z());
+        zhi = std::max(zhi, v.z());
+    }
+    out.height = zhi - zlo;
+    return out;
+}
+
+}  // namespace refract
