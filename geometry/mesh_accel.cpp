@@ -2,6 +2,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -14,12 +16,21 @@ namespace refract {
 
 namespace {
 
+// The bytes Embree holds, all its scenes together (its memory monitor's running sum).
+std::atomic<long long> embree_bytes{0};
+
+bool monitor(void*, ssize_t bytes, bool) {
+    embree_bytes += static_cast<long long>(bytes);
+    return true;  // never refuse an allocation
+}
+
 // The process's one Embree device (thread-safe static initialisation; kept to the end of
 // the process, as Embree's own examples do).
 RTCDevice device() {
     static const RTCDevice d = [] {
         RTCDevice dev = rtcNewDevice("verbose=0");
         if (!dev) throw InputError("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+        rtcSetDeviceMemoryMonitorFunction(dev, monitor, nullptr);
         return dev;
     }();
     return d;
@@ -62,12 +73,14 @@ struct MeshAccel::Impl {
     Mode mode = Mode::refined;
     RTCScene scene = nullptr;
     std::vector<TriangleD> triangles;
+    long long embree_bytes = 0;  // Embree's allocations over the build (other builds at the same time included)
 };
 
 MeshAccel::MeshAccel(const TriangleMesh& mesh, Mode mode) : impl_(std::make_unique<Impl>()) {
     impl_->mesh = &mesh;
     impl_->mode = mode;
     const RTCDevice dev = device();
+    const long long embree_before = embree_bytes.load();
     RTCScene scene = rtcNewScene(dev);
     if (mode == Mode::refined) {
         // Robust traversal (no optimisation that can miss an edge) and the best BVH Embree builds.
@@ -100,6 +113,11 @@ MeshAccel::MeshAccel(const TriangleMesh& mesh, Mode mode) : impl_(std::make_uniq
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene);
     impl_->scene = scene;
+    impl_->embree_bytes = embree_bytes.load() - embree_before;
+}
+
+std::size_t MeshAccel::bytes() const {
+    return static_cast<std::size_t>(std::max(0LL, impl_->embree_bytes)) + impl_->triangles.capacity() * sizeof(TriangleD);
 }
 
 MeshAccel::~MeshAccel() { rtcReleaseScene(impl_->scene); }
