@@ -60,9 +60,10 @@ void draw_transforms(json& scene, std::uint64_t seed) {
                 p = json::array({m.x(), m.y(), m.z(), p[3].get<double>() - n.dot(t)});
             }
         } else if (type == "plane") {
-            const Vec3 n(o["normal"][0], o["normal"][1], o["normal"][2]);
-            o["normal"] = vec(A.transpose() * n);
-            o["offset"] = o.value("offset", 0.0) - n.dot(t);
+            const Vec3 n = Vec3(o["normal"][0], o["normal"][1], o["normal"][2]).normalized();  // as the reader takes it
+            const Vec3 m = A.transpose() * n;  // a plane's offset is along its unit normal
+            o["normal"] = vec(m / m.norm());
+            o["offset"] = (o.value("offset", 0.0) - n.dot(t)) / m.norm();
         } else {
             continue;
         }
