@@ -33,7 +33,7 @@ struct Args {
     bool no_povray = false;
     int polarisation_pairs = 0;
     int birefringence_pairs = 0;
-    bool kernels = false, meshes = false, objects = false, sweep = false;
+    bool kernels = false, meshes = false, objects = false, sweep = false, mesh_file = false;
     int sweep_rays = 0;
     std::string rtiow;
     int rounds = 0;  // 0: 5 for --kernels / --meshes, 3 for the diamond
@@ -289,6 +289,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_flag("--kernels", a->kernels,
                   "Only the round brilliant's intersection: plane-set kernel against Embree on its triangles, same rays");
     sub->add_flag("--meshes", a->meshes, "Only the mesh search, 80 to 327 680 triangles, against Embree alone");
+    sub->add_flag("--mesh-file", a->mesh_file,
+                  "Only the mesh-file load: a 1.3 M-triangle binary PLY and STL, load and BVH times, bytes per triangle");
     sub->add_flag("--objects", a->objects, "Only the nearest-hit search over 10 to 10 000 spheres, the tracer's (sphere set or object BVH) against one by one");
     sub->add_option("--rtiow", a->rtiow,
                     "Only the RTIOW chapter scene against a build of the book's code at PATH (docs/performance.md)");
@@ -301,7 +303,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->callback([a] {
         using namespace refract;
         a->threads = worker_threads(a->threads);
-        if (a->kernels || a->meshes || a->objects || a->sweep || !a->rtiow.empty()) {
+        if (a->kernels || a->meshes || a->objects || a->sweep || a->mesh_file || !a->rtiow.empty()) {
+            if (a->mesh_file) cli::bench::mesh_file();
             if (a->sweep) cli::bench::sweep(a->threads, a->sweep_rays);
             if (a->objects) cli::bench::objects(a->rounds > 0 ? a->rounds : 5);
             if (!a->rtiow.empty()) cli::bench::rtiow(a->rtiow, a->rounds > 0 ? a->rounds : 3);

@@ -19,6 +19,10 @@ void facet_local(const ConvexPolyhedron& solid, int rounds);
 // where it finishes.
 void meshes(int rounds);
 
+// A 1.3 M-triangle mesh file (binary PLY and STL, written in a temporary directory) loaded
+// as a scene object: load and BVH build times, bytes per triangle.
+void mesh_file();
+
 // Scenes of 10 to 10 000 spheres: the tracer's nearest-hit search through its object BVH
 // against the linear search over the objects.
 void objects(int rounds);

@@ -25,7 +25,7 @@ struct ValidateArgs {
     int random = -1;
     std::uint64_t seed = 1;
     std::vector<int> size{80, 60};  // W H
-    bool no_dispersion = false, no_shrink = false;
+    bool no_dispersion = false, no_shrink = false, transforms = false;
     double timeout = 60;
 };
 
@@ -49,6 +49,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
         ->expected(2)
         ->check(CLI::Range(1, 4096));
     sub->add_flag("--no-dispersion", args->no_dispersion, "--random: no dispersive materials");
+    sub->add_flag("--transforms", args->transforms,
+                  "--random: objects written untransformed with a random transform (the same scenes otherwise)");
     sub->add_flag("--no-shrink", args->no_shrink, "--random: do not shrink failures");
     sub->add_option("--timeout", args->timeout, "--random: POV-Ray time limit per scene, seconds (60)")
         ->check(CLI::Range(0.001, 86400.0));
@@ -113,6 +115,7 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             ro.scene.width = args->size[0];
             ro.scene.height = args->size[1];
             ro.scene.dispersion = !args->no_dispersion;
+            ro.scene.transforms = args->transforms;
             ro.shrink = !args->no_shrink;
             ro.jobs = args->threads;
             ro.povray.executable = args->povray;

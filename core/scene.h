@@ -14,13 +14,21 @@
 #include <refract/core/spectrum/dispersion.h>
 #include <refract/core/spectrum/wavelengths.h>
 #include <refract/geometry/shapes.h>
+#include <refract/geometry/transform.h>
 
 namespace refract {
 
 struct Object {
     std::string name;
-    Shape shape;
+    Shape shape;       // in the scene's coordinates (any transform applied)
     int material = 0;  // index into Scene::materials
+    // The object's "transform" and its shape before it (the POV-Ray export writes that
+    // shape with POV-Ray's `matrix`); empty when the object has none.
+    struct Placement {
+        Transform transform;
+        std::shared_ptr<const Shape> local;
+    };
+    std::optional<Placement> placement;
 };
 
 // A polarisation state (docs/polarisation.md): of a light's emission, or the state an

@@ -26,7 +26,7 @@ ConvexPolyhedron place_gem(const Gem& gem, double scale, const JsonReader& o) {
 }
 
 Shape parse_gem_design(const JsonReader& o) {
-    o.only({"type", "name", "material", "design", "position", "diameter", "rotation"});
+    o.only({"type", "name", "material", "design", "position", "diameter", "rotation", "transform"});
     const std::string name = o.string("design");
     if (name.empty()) o.fail_at("design", "must name a GemCad .asc design file");
     const std::filesystem::path path = std::filesystem::path(o.file()).parent_path() / name;

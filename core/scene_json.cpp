@@ -9,6 +9,8 @@
 #include <refract/core/compat.h>
 #include <refract/core/integrators/integrator.h>
 #include <refract/core/json_reader.h>
+#include <refract/core/mesh_file.h>
+#include <refract/core/object_transform.h>
 #include <refract/core/scene_gem.h>
 #include <refract/geometry/gem/brilliant.h>
 #include <refract/geometry/error.h>
@@ -140,7 +142,7 @@ int material_ref(const JsonReader& o, std::vector<Material>& materials, const st
 // (core/scene_gem.h): scaled to `diameter` (girdle diameter).
 Shape parse_brilliant(const JsonReader& o) {
     o.only({"type", "name", "material", "preset", "table", "crown_angle", "pavilion_angle", "star", "lower_half",
-            "girdle", "culet", "girdle_facets", "bruted_planes", "position", "diameter", "rotation"});
+            "girdle", "culet", "girdle_facets", "bruted_planes", "position", "diameter", "rotation", "transform"});
     BrilliantCut cut = brilliant_preset(o.string("preset", "gia-default"));
     cut.table = o.number("table", cut.table);
     cut.crown_angle = o.number("crown_angle", cut.crown_angle);
@@ -160,21 +162,40 @@ Shape parse_brilliant(const JsonReader& o) {
     return place_gem(gem, o.positive("diameter", 2.0) / 2.0, o);
 }
 
-Shape parse_shape(const JsonReader& o, const std::string& type) {
+// A mesh file's path, relative to the scene file's directory.
+std::string mesh_path(const JsonReader& o, const std::string& file) {
+    const std::string name = o.string("file");
+    if (name.empty()) o.fail_at("file", "must name a mesh file");
+    return (std::filesystem::path(file).parent_path() / name).lexically_normal().string();
+}
+
+// The mesh of a mesh file, shared by every object that uses the same file and node.
+std::shared_ptr<const Shape> mesh_file(const JsonReader& o, const std::string& file, MeshFileCache& meshes) {
+    if (o.has("vertices") || o.has("triangles")) o.fail_at("file", "a mesh takes either a file or vertices and triangles");
+    try {
+        return meshes.get(mesh_path(o, file), o.string("node", ""));
+    } catch (const MeshFileError& e) {
+        o.fail_at(e.field, e.what());
+    }
+}
+
+Shape parse_shape(const JsonReader& o, const std::string& type, const std::string& file, MeshFileCache& meshes) {
     if (type == "sphere") {
-        o.only({"type", "name", "material", "center", "radius"});
+        o.only({"type", "name", "material", "center", "radius", "transform"});
         const double radius = o.number("radius");
         if (radius == 0) o.fail_at("radius", "must be non-zero (negative: hollow, normals flipped)");
         return Sphere{o.vec3("center"), radius};
     }
     if (type == "plane") {
-        o.only({"type", "name", "material", "normal", "offset"});
+        o.only({"type", "name", "material", "normal", "offset", "transform"});
         const auto n = unit_vector(o.vec3("normal"));
         if (!n) o.fail_at("normal", "must be non-zero");
         return Plane{*n, o.number("offset", 0.0)};
     }
     if (type == "mesh") {
-        o.only({"type", "name", "material", "vertices", "triangles"});
+        o.only({"type", "name", "material", "vertices", "triangles", "file", "node", "transform"});
+        if (o.has("file")) return *mesh_file(o, file, meshes);
+        if (o.has("node")) o.fail_at("node", "names a node of a mesh file: give the file too");
         TriangleMesh m;
         const auto& vs = o.raw("vertices");
         const auto& ts = o.raw("triangles");
@@ -200,7 +221,7 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
         return m;
     }
     if (type == "polyhedron") {
-        o.only({"type", "name", "material", "planes", "labels"});
+        o.only({"type", "name", "material", "planes", "labels", "transform"});
         ConvexPolyhedron c;
         const auto& ps = o.raw("planes");
         if (!ps.is_array() || ps.size() < 4) o.fail_at("planes", "must be an array of at least 4 [nx, ny, nz, d]");
@@ -227,6 +248,29 @@ Shape parse_shape(const JsonReader& o, const std::string& type) {
     if (type == "brilliant") return parse_brilliant(o);
     if (type == "gem") return parse_gem_design(o);
     o.fail_at("type", "unknown object type '" + clip_echo(type) + "' (sphere, plane, mesh, polyhedron, brilliant, gem)");
+}
+
+// A transparent mesh from a file must enclose a solid: the tracer decides entering and
+// leaving by the triangles' outward normals.
+void check_closed(const JsonReader& o, const std::string& file, MeshFileCache& meshes) {
+    const std::string path = mesh_path(o, file);
+    const std::string node = o.string("node", "");
+    const MeshClosure& c = meshes.closure(path, node);
+    if (!c.closed_outward())
+        o.fail_at("file", path + (node.empty() ? "" : " (node '" + clip_echo(node) + "')") +
+                              ": a transparent mesh must be closed and consistently oriented: " + c.describe());
+}
+
+// The object's "transform": its shape moved, the shape before it kept for the export.
+// A mesh file's mesh is kept once, in the cache's copy, for all its instances.
+void place(Object& obj, const JsonReader& o, std::shared_ptr<const Shape> local) {
+    const Transform T = parse_transform(o.child("transform"));
+    auto moved = transformed(obj.shape, T);
+    if (!moved)
+        o.fail_at("transform", "a sphere takes only rotation, translation and uniform scale (for a non-uniform scale "
+                               "or a shear, use a mesh)");
+    obj.placement = Object::Placement{T, local ? std::move(local) : std::make_shared<const Shape>(std::move(obj.shape))};
+    obj.shape = std::move(*moved);
 }
 
 SpectralSettings parse_spectral(const JsonReader& r, const std::string& file) {
@@ -424,13 +468,16 @@ Scene parse_scene(const json& j, const std::string& file) {
     }
     const auto& objs = root.raw("objects");
     if (!objs.is_array()) root.fail_at("objects", "must be an array");
+    MeshFileCache meshes;  // each mesh file read once (instancing)
     for (size_t k = 0; k < objs.size(); ++k) {
         const JsonReader o(objs[k], file, "/objects/" + std::to_string(k));
         if (!objs[k].is_object()) o.fail("must be an object");
         Object obj;
         obj.name = o.string("name", "object " + std::to_string(k));
-        obj.shape = parse_shape(o, o.string("type"));
+        obj.shape = parse_shape(o, o.string("type"), file, meshes);
         obj.material = material_ref(o, s.materials, by_name, file);
+        if (o.has("file") && transparent(s.materials[static_cast<size_t>(obj.material)])) check_closed(o, file, meshes);
+        if (o.has("transform")) place(obj, o, o.has("file") ? mesh_file(o, file, meshes) : nullptr);
         s.objects.push_back(std::move(obj));
     }
     if (root.has("lights")) {

@@ -2,6 +2,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -14,12 +16,21 @@ namespace refract {
 
 namespace {
 
+// The bytes Embree holds, all its scenes together (its memory monitor's running sum).
+std::atomic<long long> embree_bytes{0};
+
+bool monitor(void*, ssize_t bytes, bool) {
+    embree_bytes += static_cast<long long>(bytes);
+    return true;  // never refuse an allocation
+}
+
 // The process's one Embree device (thread-safe static initialisation; kept to the end of
 // the process, as Embree's own examples do).
 RTCDevice device() {
     static const RTCDevice d = [] {
         RTCDevice dev = rtcNewDevice("verbose=0");
         if (!dev) throw InputError("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+        rtcSetDeviceMemoryMonitorFunction(dev, monitor, nullptr);
         return dev;
     }();
     return d;
@@ -62,12 +73,28 @@ struct MeshAccel::Impl {
     Mode mode = Mode::refined;
     RTCScene scene = nullptr;
     std::vector<TriangleD> triangles;
+    long long embree_bytes = 0;  // Embree's allocations over the build (other builds at the same time included)
+
+    // Triangle k as the refinement reads it: from the copy when there is one, else from
+    // the mesh (the same subtractions, so the same bits).
+    TriangleD triangle(size_t k) const {
+        if (!triangles.empty()) return triangles[k];
+        const auto& t = mesh->triangles[k];
+        const Vec3& a = mesh->vertices[static_cast<size_t>(t[0])];
+        return {a, mesh->vertices[static_cast<size_t>(t[1])] - a, mesh->vertices[static_cast<size_t>(t[2])] - a};
+    }
 };
+
+// Meshes up to this many triangles keep the refinement's own copy of each triangle
+// (72 bytes: one cache line read instead of an index and three vertices, docs/performance.md);
+// larger ones read the mesh, to hold within 120 bytes per triangle.
+constexpr size_t kCopiedTriangles = size_t{1} << 19;
 
 MeshAccel::MeshAccel(const TriangleMesh& mesh, Mode mode) : impl_(std::make_unique<Impl>()) {
     impl_->mesh = &mesh;
     impl_->mode = mode;
     const RTCDevice dev = device();
+    const long long embree_before = embree_bytes.load();
     RTCScene scene = rtcNewScene(dev);
     if (mode == Mode::refined) {
         // Robust traversal (no optimisation that can miss an edge) and the best BVH Embree builds.
@@ -88,7 +115,7 @@ MeshAccel::MeshAccel(const TriangleMesh& mesh, Mode mode) : impl_(std::make_uniq
         for (int c = 0; c < 3; ++c) vb[3 * i + c] = static_cast<float>(mesh.vertices[i][c]);
     for (size_t k = 0; k < mesh.triangles.size(); ++k)
         for (int c = 0; c < 3; ++c) ib[3 * k + c] = static_cast<unsigned>(mesh.triangles[k][c]);
-    if (mode == Mode::refined) {
+    if (mode == Mode::refined && mesh.triangles.size() <= kCopiedTriangles) {
         impl_->triangles.reserve(mesh.triangles.size());
         for (const auto& t : mesh.triangles) {
             const Vec3& a = mesh.vertices[static_cast<size_t>(t[0])];
@@ -100,6 +127,11 @@ MeshAccel::MeshAccel(const TriangleMesh& mesh, Mode mode) : impl_(std::make_uniq
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene);
     impl_->scene = scene;
+    impl_->embree_bytes = embree_bytes.load() - embree_before;
+}
+
+std::size_t MeshAccel::bytes() const {
+    return static_cast<std::size_t>(std::max(0LL, impl_->embree_bytes)) + impl_->triangles.capacity() * sizeof(TriangleD);
 }
 
 MeshAccel::~MeshAccel() { rtcReleaseScene(impl_->scene); }
@@ -116,7 +148,7 @@ std::optional<Hit> MeshAccel::intersect(const Ray& r, double t_min, double t_max
         rtcIntersect1(impl_->scene, &ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
         const auto k = static_cast<size_t>(rh.hit.primID);
-        const TriangleD& tri = impl_->triangles[k];
+        const TriangleD tri = impl_->triangle(k);
         const auto h = triangle_t(tri.a, tri.e1, tri.e2, r);
         const double t = h ? h->t : rh.ray.tfar;  // parallel in double: Embree's t
         if (t > t_min && t < t_max)

@@ -50,6 +50,10 @@ public:
     };
     FloatHit intersect_float(const Ray& r, double t_min, double t_max) const;
 
+    // The memory this search holds: Embree's allocations for its scene (measured through
+    // the device's memory monitor over the build) and the refinement's data.
+    std::size_t bytes() const;
+
     // Meshes with fewer triangles are searched linearly by the tracer (cheaper than a BVH
     // query; measured in docs/performance.md).
     static constexpr std::size_t kMinTriangles = 16;

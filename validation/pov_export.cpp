@@ -374,6 +374,26 @@ std::string shape(const Shape& sh, bool solid = false) {
     return std::visit([&](const auto& s) { return pov_shape(s, solid); }, sh);
 }
 
+// POV-Ray's `matrix <…>` of x ↦ A x + t: POV-Ray multiplies row vectors, so its rows are
+// A's columns, then t.
+std::string pov_matrix(const Transform& T) {
+    std::string s = "matrix <";
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 3; ++j)
+            s += (i || j ? ", " : "") + pov_number(i < 3 ? T.linear(j, i) : T.translation[j]);
+    return s + ">";
+}
+
+// An object as POV-Ray takes it: the shape in the scene's coordinates, or, when the object
+// has a transform, its shape before it and POV-Ray's matrix (POV-Ray applies the transform).
+// `opaque`: a hollow sphere's inverse dropped (the normal side is moot).
+std::string object_shape(const Object& obj, bool solid, bool opaque = false) {
+    Shape sh = obj.placement ? *obj.placement->local : obj.shape;
+    if (auto* sp = std::get_if<Sphere>(&sh); sp && opaque) sp->radius = std::abs(sp->radius);
+    if (!obj.placement) return shape(sh, solid);
+    return shape(sh, solid) + " " + pov_matrix(obj.placement->transform) + "\n   ";
+}
+
 std::string camera(const Camera& c) {
     std::ostringstream o;
     if (c.type == Camera::Type::Perspective) {
@@ -492,7 +512,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
             refuse(object_where(obj), "the orthographic image plane crosses the surface of an object (POV-Ray "
                                       "starts such rays inside it and drops Fresnel reflection at glass exits)");
         o << "// " << comment_text(obj.name) << " (" << comment_text(m.name) << ")\n";
-        o << shape(sh) << (c == Containment::Inside ? " inverse" : "") << " " << texture(m);
+        o << object_shape(obj, false, true) << (c == Containment::Inside ? " inverse" : "") << " " << texture(m);
         if (!casts_shadow(m)) o << " no_shadow";  // a highlight sphere, not an occluder
         o << " }\n";
     }
@@ -501,7 +521,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         const Material& m = s.materials[s.objects[g[0]].material];
         o << "// " << comment_text(s.objects[g[0]].name) << " (" << comment_text(m.name) << ")";
         if (g.size() == 1) {
-            o << "\n" << shape(s.objects[g[0]].shape, true) << " " << texture(m) << " " << interior(*m.dielectric()) << target << " }\n";
+            o << "\n" << object_shape(s.objects[g[0]], true) << " " << texture(m) << " " << interior(*m.dielectric()) << target << " }\n";
             continue;
         }
         o << " hollowed by";
@@ -509,7 +529,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         // One interior for all the surfaces of the hollow solid; an intersection, so that
         // POV-Ray's inside test (a camera in the shell or in a cavity) is the solid's.
         o << "\nintersection {\n";
-        for (size_t i : g) o << "  " << shape(s.objects[i].shape) << " }\n";
+        for (size_t i : g) o << "  " << object_shape(s.objects[i], false) << " }\n";
         o << "  " << texture(m) << "\n  " << interior(*m.dielectric()) << target << "\n}\n";
     }
     return o.str();

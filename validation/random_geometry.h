@@ -197,4 +197,9 @@ Template brilliant_template(Rand& rng, double size);
 // The template at p, rounded; its scene-file objects get their material later.
 std::optional<Solid> place(const Template& t, const Vec3& p, const std::string& name, bool transparent);
 
+// Transforms drawn onto a generated scene (validation/random_transforms.cpp), from a stream
+// of their own: the objects stay where they were, each written untransformed plus its
+// "transform".
+void draw_transforms(json& scene, std::uint64_t seed);
+
 }  // namespace refract::validation::random_detail

@@ -511,7 +511,9 @@ namespace refract::validation {
 
 nlohmann::json random_scene(std::uint64_t seed, const RandomSceneOptions& opt) {
     if (opt.width < 1 || opt.height < 1) throw InputError("random_scene: the image size must be positive");
-    return random_detail::Generator(seed, opt).run();
+    nlohmann::json scene = random_detail::Generator(seed, opt).run();
+    if (opt.transforms) random_detail::draw_transforms(scene, seed);
+    return scene;
 }
 
 }  // namespace refract::validation

@@ -12,6 +12,9 @@ namespace refract::validation {
 struct RandomSceneOptions {
     int width = 80, height = 60;  // image size (validation-sized)
     bool dispersion = true;       // allow dispersive materials (POV-Ray's law)
+    // Objects written untransformed plus a random "transform" that puts them back where the
+    // generator placed them (a stream of their own: off, the scene is the same as before).
+    bool transforms = false;
 };
 
 // A refract scene file (docs/scene-format.md) as JSON, "compat": "povray", deterministic
