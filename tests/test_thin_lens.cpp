@@ -141,7 +141,10 @@ TEST_CASE("thin lens render is deterministic with the fixed seed and differs fro
 TEST_CASE("thin lens fields: aperture >= 0 on a perspective camera, focus_distance > 0 and only with an aperture",
           "[camera][thin-lens][errors]") {
     const auto parse = [](const char* camera) {
-        return parse_scene(nlohmann::json::parse(std::string(R"({"camera": )") + camera + "}"), "c.json");
+        return parse_scene(nlohmann::json::parse(std::string(R"({"camera": )") + camera +
+                                                 R"(, "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1,
+                                                 "material": {"type": "diffuse"}}]})"),
+                           "c.json");
     };
     const Scene s = parse(R"({"location": [0,0,-3], "look_at": [0,4,0], "aperture": 0.1})");
     CHECK(s.camera.focus_distance == Approx(5.0));  // |look_at − location|
