@@ -37,4 +37,19 @@ Ray Camera::ray(const Basis& b, double x, double y) const {
     return Ray{location + x0 * b.R + y0 * b.U, b.D};
 }
 
+Ray Camera::ray(const Basis& b, double x, double y, double u, double v) const {
+    const Ray pin = ray(b, x, y);
+    if (!thin_lens()) return pin;
+    // The pinhole ray meets the plane in focus (normal D̂, at focus_distance) at P.
+    const Vec3 d_hat = b.D.normalized();
+    const Vec3 P = pin.origin + pin.dir * (focus_distance / pin.dir.dot(d_hat));
+    const double r = 0.5 * aperture * std::sqrt(u), phi = 2.0 * M_PI * v;
+    const Vec3 lens = location + r * std::cos(phi) * b.R.normalized() + r * std::sin(phi) * b.U.normalized();
+    return Ray{lens, (P - lens).normalized()};
+}
+
+double thin_lens_blur_diameter(double aperture, double focus_distance, double z) {
+    return aperture * std::fabs(z - focus_distance) / z;
+}
+
 }  // namespace refract

@@ -42,4 +42,6 @@ std::optional<double> absorption_coefficient(double transmittance, double thickn
     return -std::log(transmittance) / thickness;
 }
 
+double extinction_absorption(double k, double wavelength) { return 4.0 * M_PI * k / wavelength; }
+
 }  // namespace refract::optics

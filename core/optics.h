@@ -207,4 +207,9 @@ double beer_lambert(double alpha, double distance);
 // 0 < T <= 1 and d > 0 (both finite), so it never yields NaN, infinity or α < 0.
 std::optional<double> absorption_coefficient(double transmittance, double thickness);
 
+// The absorption coefficient of a medium of extinction coefficient k (the imaginary part
+// of the complex index n + ik) at vacuum wavelength λ: α = 4πk/λ, in the reciprocal unit
+// of λ (the intensity decays as exp(−αz); Born & Wolf, Principles of Optics, §14.1).
+double extinction_absorption(double k, double wavelength);
+
 }  // namespace refract::optics

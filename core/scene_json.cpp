@@ -23,8 +23,25 @@ constexpr long long kMaxPixels = 1LL << 26;  // width × height (docs/scene-form
 
 using nlohmann::json;
 
+// The thin lens (core/camera.h): `aperture` (diameter) > 0 with `focus_distance` > 0, on
+// a perspective camera; focus_distance defaults to |look_at − location|.
+void read_thin_lens(const JsonReader& r, Camera& c) {
+    if (!r.has("aperture")) {
+        if (r.has("focus_distance")) r.fail_at("focus_distance", "applies with an \"aperture\" only (a thin lens)");
+        return;
+    }
+    if (c.type != Camera::Type::Perspective)
+        r.fail_at("aperture", "applies to a perspective camera only (this one is orthographic)");
+    c.aperture = r.number("aperture");
+    if (!(c.aperture >= 0) || !(c.aperture < 1e150)) r.fail_at("aperture", "must be a lens diameter >= 0 (0: a pinhole)");
+    c.focus_distance = r.number("focus_distance", (c.look_at - c.location).norm());
+    if (!(c.focus_distance > 0) || !(c.focus_distance < 1e150)) r.fail_at("focus_distance", "must be > 0");
+    if (c.aperture == 0) c.focus_distance = 0;
+}
+
 Camera parse_camera(const JsonReader& r) {
-    r.only({"type", "location", "look_at", "sky", "angle", "vfov", "ortho_height", "width", "height"});
+    r.only({"type", "location", "look_at", "sky", "angle", "vfov", "ortho_height", "width", "height", "aperture",
+            "focus_distance"});
     Camera c;
     const std::string type = r.string("type", "perspective");
     if (type == "perspective") c.type = Camera::Type::Perspective;
@@ -63,6 +80,7 @@ Camera parse_camera(const JsonReader& r) {
         if (!(c.angle_deg > 0 && c.angle_deg < 180)) r.fail_at("angle", "must be in (0, 180) degrees");
     }
     c.ortho_height = r.positive("ortho_height", c.ortho_height);
+    read_thin_lens(r, c);
     return c;
 }
 

@@ -54,6 +54,7 @@ public:
     bool exact() const { return exact_; }
     // The camera's ray through image position (x, y) (Camera::ray, its basis computed once).
     Ray camera_ray(double x, double y) const { return scene_.camera.ray(camera_basis_, x, y); }
+    Ray camera_ray(double x, double y, double u, double v) const { return scene_.camera.ray(camera_basis_, x, y, u, v); }
     Vec3 background(const Vec3& dir) const { return scene_.background.radiance(dir); }
 
     // The interaction at a hit, by the material's rules (core/material.h): leaves (diffuse,

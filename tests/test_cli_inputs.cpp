@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "tests/cli_run.h"
@@ -163,4 +164,42 @@ TEST_CASE("Scene text echoed in a message is clipped: a 1 MB unknown key, and de
     std::ofstream{dir / "d.json"} << scene;
     CHECK(run("trace " + (dir / "d.json").string() + " --pixel 2 1", dir).code == 0);
     fs::remove_all(dir);
+}
+
+TEST_CASE("refract render and trace: a refractiveindex.info dispersion file with an unknown formula is refused "
+          "naming the scene field, the file and the item, exit 2, nothing written",
+          "[cli][errors][refractiveindex]") {
+    const fs::path dir = fresh_dir("rii-formula");
+    std::ofstream{dir / "bad.yml"} << "DATA:\n  - type: formula 12\n    wavelength_range: 0.3 1\n    coefficients: 1\n";
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
+        "materials": {"glass": {"type": "dielectric", "dispersion": {"file": "bad.yml"}}},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "glass"}]})";
+    const std::string scene = (dir / "s.json").string();
+    const std::string line = "s.json: /materials/glass/dispersion/file: " + (dir / "bad.yml").string() +
+                             ": /DATA/0/type: unknown formula \"12\" (formula 1–9)";
+    check_refused(run("render " + scene + " -o " + (dir / "out.png").string(), dir, kBounded), line);
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+    check_refused(run("trace " + scene + " --pixel 2 1 -o " + (dir / "t.json").string(), dir, kBounded), line);
+    CHECK_FALSE(fs::exists(dir / "t.json"));
+}
+
+TEST_CASE("refract export-pov: a refractiveindex.info dispersion is refused with its label (POV-Ray has no "
+          "Sellmeier law); a thin lens is written as focal blur",
+          "[cli][errors][refractiveindex]") {
+    const fs::path dir = fresh_dir("rii-pov");
+    const std::string data = std::string(REFRACT_SOURCE_DIR) + "/tests/data/refractiveindex/N-BK7.yml";
+    fs::copy_file(data, dir / "N-BK7.yml");
+    std::ofstream{dir / "s.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3},
+        "materials": {"glass": {"type": "dielectric", "dispersion": {"file": "N-BK7.yml"}}},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "glass"}]})";
+    const Run r = run("export-pov " + (dir / "s.json").string() + " -o " + (dir / "s.pov").string(), dir, kBounded);
+    check_refused(r, "dispersion 'N-BK7.yml (refractiveindex.info formula 2)'");
+    CHECK_FALSE(fs::exists(dir / "s.pov"));
+    std::ofstream{dir / "lens.json"} << R"({"camera": {"location": [0,0,-4], "width": 4, "height": 3, "aperture": 0.25,
+        "focus_distance": 3}, "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"type": "diffuse"}}],
+        "render": {"samples": 16, "jitter": true}})";
+    REQUIRE(run("export-pov " + (dir / "lens.json").string() + " -o " + (dir / "lens.pov").string(), dir, kBounded).code == 0);
+    std::ifstream f(dir / "lens.pov");
+    const std::string pov((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    CHECK(pov.find("aperture 0.5\n  focal_point <0, 0, -1>\n  blur_samples 16, 16") != std::string::npos);
 }

@@ -42,6 +42,20 @@ ImageDifference compare_with_povray_image(const Image& refract, const Image& pov
     return compare_images(clamp01(refract), povray, targets.pixel_tolerance);
 }
 
+Image block_means(const Image& img, int block) {
+    const int w = (img.width + block - 1) / block, h = (img.height + block - 1) / block;
+    Image r(w, h);
+    for (int bj = 0; bj < h; ++bj)
+        for (int bi = 0; bi < w; ++bi) {
+            Vec3 sum = Vec3::Zero();
+            int n = 0;
+            for (int j = bj * block; j < std::min(img.height, (bj + 1) * block); ++j)
+                for (int i = bi * block; i < std::min(img.width, (bi + 1) * block); ++i, ++n) sum += img.at(i, j);
+            r.set(bi, bj, sum / n);
+        }
+    return r;
+}
+
 Image clamp01(const Image& img) {
     Image out(img.width, img.height);
     throw_if_failed(image_io().clamp01(img.rgb.data(), img.width, img.height, out.rgb.data()), "");

@@ -46,6 +46,11 @@ ImageDifference compare_with_povray_image(const Image& refract, const Image& pov
 // Every channel clamped to [0, 1]: what a 16-bit PNG can hold.
 Image clamp01(const Image& img);
 
+// The means of `block`×`block` squares of pixels (the last row and column of squares
+// cover what is left): the statistical comparison of images whose pixels are each a mean
+// of random samples (a thin lens against POV-Ray's focal blur, docs/validation.md).
+Image block_means(const Image& img, int block);
+
 // Difference heat map: per pixel max over channels of |a − b| on a log scale, 1e-6 and
 // below black, 1e-1 and above the top of OpenImageIO's "inferno" map (1e-3 is 60 %).
 // Written as an 8-bit PNG through a temporary name.

@@ -63,7 +63,8 @@ void check_settings(const Scene& s, const Refuser& refuse, bool photons) {
     const RenderSettings& r = s.settings;
     if (r.integrator == IntegratorKind::Stochastic)
         refuse("/render/integrator", "the stochastic integrator (RTIOW path sampling) has no POV-Ray equivalent");
-    if (r.samples > 1 && r.jitter)
+    // A thin lens is POV-Ray's focal blur, which jitters within the pixel too.
+    if (r.samples > 1 && r.jitter && !s.camera.thin_lens())
         refuse("/render/jitter", "jittered supersampling (" + std::to_string(r.samples) +
                                      " samples) differs from POV-Ray's antialiasing");
     if (r.light_pass.enabled && !photons)
@@ -394,11 +395,21 @@ std::string object_shape(const Object& obj, bool solid, bool opaque = false) {
     return shape(sh, solid) + " " + pov_matrix(obj.placement->transform) + "\n   ";
 }
 
-std::string camera(const Camera& c) {
+std::string camera(const Camera& c, int samples) {
     std::ostringstream o;
     if (c.type == Camera::Type::Perspective) {
         o << "camera {\n  perspective\n  location " << vec(c.location) << "\n  sky " << vec(c.sky)
           << "\n  up y\n  right x*" << c.width << "/" << c.height << "\n  angle " << pov_number(c.angle_deg);
+        if (c.thin_lens()) {
+            // The thin lens as POV-Ray's focal blur (tracepixel.cpp, JitterCameraRay): it
+            // moves the eye by aperture/2 times a point of a disk of radius 1/2, so its
+            // aperture is twice the lens diameter; the plane in focus is the one normal to
+            // the view through focal_point (placed on the view axis); every pixel takes
+            // `samples` lens samples (blur_samples min = max: no early stop).
+            const Vec3 focus = c.location + (c.look_at - c.location).normalized() * c.focus_distance;
+            o << "\n  aperture " << pov_number(2.0 * c.aperture) << "\n  focal_point " << vec(focus)
+              << "\n  blur_samples " << samples << ", " << samples;
+        }
     } else {
         const double aspect = static_cast<double>(c.width) / c.height;
         o << "camera {\n  orthographic\n  location " << vec(c.location) << "\n  sky " << vec(c.sky) << "\n  up y*"
@@ -474,7 +485,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         o << "\n  photons { count " << n << " }";
     }
     o << "\n}\n";
-    o << camera(s.camera);
+    o << camera(s.camera, s.settings.samples);
     o << background(s.background, opt.environment_map);
     for (const Light& l : s.lights) {
         if (l.kind == Light::Kind::Directional) {

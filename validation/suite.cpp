@@ -49,6 +49,7 @@ struct Analytic {
 struct Tolerances {
     std::string description;
     Targets povray;  // the suite's rule (validation/compare.h)
+    int block = 1;   // > 1: compared as means of block×block pixels (statistical cases)
     std::optional<Analytic> analytic;
     double timeout = 60;
 };
@@ -81,12 +82,13 @@ Tolerances load_tolerances(const std::string& path) {
     t.description = r.string("description", "");
     if (r.has("povray")) {
         const JsonReader p = r.child("povray");
-        p.only({"pixel_tolerance", "max_fraction_over", "rmse"});
+        p.only({"pixel_tolerance", "max_fraction_over", "rmse", "block"});
         t.povray.pixel_tolerance = p.positive("pixel_tolerance", t.povray.pixel_tolerance);
         t.povray.max_fraction_over = p.number("max_fraction_over", t.povray.max_fraction_over);
         if (t.povray.max_fraction_over < 0 || t.povray.max_fraction_over > 1)
             p.fail_at("max_fraction_over", "must be in [0, 1]");
         t.povray.rmse = p.positive("rmse", t.povray.rmse);
+        t.block = p.integer("block", 1, 1, 64);
     }
     if (r.has("analytic")) {
         const JsonReader a = r.child("analytic");
@@ -328,7 +330,12 @@ CaseResult run_case_inner(const std::string& name, const SuiteOptions& opt, std:
         // POV-Ray's 16-bit PNG holds [0, 1]: refract clipped the same way; the suite's rule
         // (Targets::met_by) is both checked metrics passing.
         const Image clipped = clamp01(img_compat);
-        const ImageDifference d = compare_with_povray_image(img_compat, img_pov, tol.povray);
+        // A statistical case compares the means of blocks of pixels, both images clipped first.
+        const ImageDifference d =
+            tol.block > 1 ? compare_with_povray_image(block_means(clipped, tol.block), block_means(img_pov, tol.block), tol.povray)
+                          : compare_with_povray_image(img_compat, img_pov, tol.povray);
+        if (tol.block > 1) c.metrics.push_back(result("compared as means of " + std::to_string(tol.block) + "×" +
+                                                      std::to_string(tol.block) + " pixels", tol.block));
         c.metrics.push_back(checked("compat vs povray: rmse", d.rmse, tol.povray.rmse));
         c.metrics.push_back(checked("compat vs povray: pixels over " + pov_number(tol.povray.pixel_tolerance),
                                     d.fraction_over, tol.povray.max_fraction_over, true));

@@ -84,6 +84,10 @@ Ray Integrator::sample_ray(int i, int j, int k, Rng& rng) const {
         x = i + rng.uniform();
         y = j + rng.uniform();
     }
+    if (scene.camera.thin_lens()) {  // a lens point per sample, from the sample's stream
+        const double u = rng.uniform(), v = rng.uniform();
+        return tracer_.camera_ray(x, y, u, v);
+    }
     return tracer_.camera_ray(x, y);
 }
 

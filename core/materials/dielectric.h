@@ -9,6 +9,7 @@
 #include <string>
 
 #include <refract/core/material_rules.h>
+#include <refract/core/spectrum/refractiveindex_info.h>
 #include <refract/geometry/error.h>
 
 namespace refract::material {
@@ -103,8 +104,19 @@ inline Dielectric Dielectric::read(const JsonReader& r, const std::string& file)
         r.fail_at("reflectivity", "only with \"reflectance\": \"constant\"");
     }
     m.filter = r.colour("filter", m.filter);
+    // A refractiveindex.info file (core/spectrum/refractiveindex_info.h) gives the index and,
+    // with k, the absorption: then an "absorption" of the scene's own contradicts it.
+    std::optional<spectrum::Absorption> file_absorption;
     if (r.has("dispersion")) {
-        m.dispersion = spectrum::parse_dispersion(r.raw("dispersion"), file + ": " + r.path_of("dispersion"));
+        const nlohmann::json& d = r.raw("dispersion");
+        const std::string where = file + ": " + r.path_of("dispersion");
+        if (d.is_object() && d.contains("file")) {
+            auto c = spectrum::read_dispersion_file(d, file, where);
+            m.dispersion = std::move(c.dispersion);
+            file_absorption = std::move(c.absorption);
+        } else {
+            m.dispersion = spectrum::parse_dispersion(d, where);
+        }
         // One index: the dispersion model's. A stated `ior` must agree with it: exactly for
         // POV-Ray's law (whose own ior is the interior's), to 5e-4 otherwise (a rounded n_d).
         const double nominal = m.dispersion->nominal();
@@ -115,8 +127,12 @@ inline Dielectric Dielectric::read(const JsonReader& r, const std::string& file)
                                  "; give one or make them agree");
         m.ior = nominal;
     }
+    if (r.has("absorption") && file_absorption)
+        r.fail_at("absorption", "the dispersion file gives k (" + file_absorption->label + "); give one");
     if (r.has("absorption"))
         m.absorption = spectrum::parse_absorption(r.raw("absorption"), file + ": " + r.path_of("absorption"));
+    else
+        m.absorption = std::move(file_absorption);
     return m;
 }
 

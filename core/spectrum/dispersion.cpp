@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <refract/core/spectrum/refractiveindex_info.h>
 #include <refract/core/spectrum/wavelengths.h>
 #include <refract/geometry/error.h>
 
@@ -114,7 +115,13 @@ double LawTerms::sum() const {
     return q;
 }
 
-double LawTerms::index() const { return squared ? std::sqrt(sum()) : sum(); }
+double LawTerms::index() const {
+    if (lorentz_lorenz) {
+        const double R = sum();  // (n² − 1)/(n² + 2) = R  ⇔  n² = (1 + 2R)/(1 − R)
+        return std::sqrt((1.0 + 2.0 * R) / (1.0 - R));
+    }
+    return squared ? std::sqrt(sum()) : sum();
+}
 
 LawTerms cauchy_terms(double l, double A, double B, double C) {
     const double l2 = l * l;
@@ -191,6 +198,8 @@ double Dispersion::n(double lambda_nm) const {
         double operator()(const PovRayModel& m) const {
             return povray_index(m.ior, m.dispersion, nm);
         }
+        double operator()(const FormulaModel& m) const { return formula_terms(m, l).index(); }
+        double operator()(const TabulatedModel& m) const { return tabulated_at(m.um, m.n, l); }
     };
     return std::visit(Eval{l, lambda_nm}, model);
 }
@@ -382,6 +391,9 @@ void only_keys(const nlohmann::json& o, std::initializer_list<const char*> keys,
 }
 
 Dispersion parse_model(const nlohmann::json& o, const std::string& path) {
+    if (o.contains("file") && !o.contains("model"))
+        throw InputError(path + "/file: a dispersion file is read relative to a scene file, in a scene's "
+                         "dielectric (\"dispersion\": {\"file\": ...})");
     if (!o.contains("model") || !o.at("model").is_string())
         throw InputError(path + "/model: expected one of \"constant\", \"cauchy\", \"sellmeier\", "
                          "\"abbe\", \"moissanite-form\", \"povray\"");
@@ -453,6 +465,9 @@ struct TermsAt {
     LawTerms operator()(const AbbeModel& m) const { return cauchy_terms(l, m.A, m.B, 0.0); }
     LawTerms operator()(const MoissaniteFormModel& m) const { return moissanite_form_terms(l, m.A, m.B, m.C, m.D); }
     LawTerms operator()(const PovRayModel& m) const { return one(povray_index(m.ior, m.dispersion, nm)); }
+    LawTerms operator()(const FormulaModel& m) const { return formula_terms(m, l); }
+    // Linear between samples: monotone between the samples, which Turns lists.
+    LawTerms operator()(const TabulatedModel& m) const { return one(tabulated_at(m.um, m.n, l)); }
 };
 
 LawTerms terms_at(const Dispersion& d, double nm) { return std::visit(TermsAt{nm * 1e-3, nm}, d.model); }
@@ -470,7 +485,39 @@ struct Poles {
     List operator()(const AbbeModel&) const { return {}; }
     List operator()(const MoissaniteFormModel& m) const { return {{m.C, "/C: the term B/(λ² − C)"}}; }
     List operator()(const PovRayModel&) const { return {}; }
+    List operator()(const FormulaModel& m) const { return formula_poles(m); }
+    List operator()(const TabulatedModel&) const { return {}; }
 };
+
+// Where a term turns (nm): the range check splits the range there, so that each term is
+// monotone on every piece it bounds.
+struct Turns {
+    using List = std::vector<double>;
+    List operator()(const ConstantIndex&) const { return {}; }
+    List operator()(const CauchyModel&) const { return {}; }
+    List operator()(const SellmeierModel&) const { return {}; }
+    List operator()(const AbbeModel&) const { return {}; }
+    List operator()(const MoissaniteFormModel&) const { return {}; }
+    List operator()(const PovRayModel&) const { return {}; }
+    List operator()(const FormulaModel& m) const { return in_nm(formula_turns(m)); }
+    List operator()(const TabulatedModel& m) const { return in_nm(m.um); }
+    static List in_nm(List um) {
+        for (double& x : um) x *= 1000.0;
+        return um;
+    }
+};
+
+// The quantity that must be > 0: the law's sum itself, or for the Lorentz–Lorenz form
+// 1 + 2R (condition 1) and 1 − R (condition 2); each linear in the terms.
+LawTerms condition(const LawTerms& t, int which) {
+    if (which == 0) return t;
+    LawTerms r;
+    r.add(1.0);
+    for (int k = 0; k < t.count; ++k) r.add((which == 1 ? 2.0 : -1.0) * t.t[static_cast<size_t>(k)]);
+    return r;
+}
+
+}  // namespace
 
 void check_range(const Dispersion& d, const std::string& path) {
     // A pole λ = √C (µm², so × 1000 for nm) inside the range: the index is infinite there.
@@ -481,48 +528,67 @@ void check_range(const Dispersion& d, const std::string& path) {
     };
     for (const auto& [C, field] : std::visit(Poles{}, d.model)) pole_check(C, field);
     const auto refuse = [&](const LawTerms& t, double nm, const std::string& what) {
+        if (t.lorentz_lorenz)
+            throw InputError(path + ": the model gives (n² − 1)/(n² + 2) = " + what + " at " + format_value(nm) +
+                             " nm; it must be finite and in (−1/2, 1) over 360–830 nm");
         throw InputError(path + ": the model gives " + (t.squared ? "n² = " : "n = ") + what + " at " +
                          format_value(nm) + " nm; it must be finite and > 0 over 360–830 nm");
     };
-    const auto check_point = [&](const LawTerms& t, double nm) {
-        const double q = t.sum();
-        if (!std::isfinite(q) || !(q > 0)) refuse(t, nm, format_value(q));
-    };
     // The minimum over the whole continuous range, not at whole nanometres: on [a, b] each
-    // term lies between its values at the ends (monotone, no pole inside), so the sum of
-    // their smaller ends bounds q from below. An interval whose bound is not > 0 is halved
-    // until the bound is > 0 or a point with q <= 0 is found.
-    const LawTerms lo = terms_at(d, kMinWavelength), hi = terms_at(d, kMaxWavelength);
-    check_point(lo, kMinWavelength);
-    check_point(hi, kMaxWavelength);
-    double largest = 0;  // every value of every term is within its ends: the sum cannot overflow
-    for (int k = 0; k < lo.count; ++k)
-        largest += std::fmax(std::fabs(lo.t[static_cast<size_t>(k)]), std::fabs(hi.t[static_cast<size_t>(k)]));
-    if (!std::isfinite(largest)) refuse(lo, kMinWavelength, "a value past the range of a double");
-    struct Interval {
-        double a, b;
-        LawTerms ta, tb;
-    };
-    std::vector<Interval> todo{{kMinWavelength, kMaxWavelength, lo, hi}};
-    for (int steps = 0; !todo.empty(); ++steps) {
-        const Interval iv = todo.back();
-        todo.pop_back();
-        double bound = 0;
-        for (int k = 0; k < iv.ta.count; ++k)
-            bound += std::fmin(iv.ta.t[static_cast<size_t>(k)], iv.tb.t[static_cast<size_t>(k)]);
-        if (bound > 0) continue;
-        const double m = 0.5 * (iv.a + iv.b);
-        const LawTerms tm = terms_at(d, m);
-        check_point(tm, m);
-        // Still not shown > 0 on an interval of 1e-9 nm (39 halvings), or after 100 000
-        // intervals: a minimum that is zero to rounding.
-        if (iv.b - iv.a < 1e-9 || steps > 100000) refuse(tm, m, "0 to within rounding");
-        todo.push_back({iv.a, m, iv.ta, tm});
-        todo.push_back({m, iv.b, tm, iv.tb});
+    // term lies between its values at the ends (monotone: no pole and no turn inside), so
+    // the sum of their smaller ends bounds q from below. An interval whose bound is not > 0
+    // is halved until the bound is > 0 or a point with q <= 0 is found. The range is first
+    // cut where a term turns (Turns).
+    std::vector<double> cuts{kMinWavelength};
+    for (double x : std::visit(Turns{}, d.model))
+        if (x > kMinWavelength && x < kMaxWavelength) cuts.push_back(x);
+    cuts.push_back(kMaxWavelength);
+    std::sort(cuts.begin(), cuts.end());
+    const int conditions = terms_at(d, kMinWavelength).lorentz_lorenz ? 2 : 1;
+    for (int which = conditions == 1 ? 0 : 1; which <= conditions; ++which) {
+        const auto at = [&](double nm) { return condition(terms_at(d, nm), which); };
+        const auto check_point = [&](const LawTerms& t, double nm) {
+            const double q = t.sum();
+            if (!std::isfinite(q) || !(q > 0)) {
+                const LawTerms law = terms_at(d, nm);
+                refuse(law, nm, format_value(law.sum()));
+            }
+        };
+        const LawTerms lo = at(kMinWavelength), hi = at(kMaxWavelength);
+        check_point(lo, kMinWavelength);
+        check_point(hi, kMaxWavelength);
+        double largest = 0;  // every value of every term is within its ends: the sum cannot overflow
+        for (int k = 0; k < lo.count; ++k)
+            largest += std::fmax(std::fabs(lo.t[static_cast<size_t>(k)]), std::fabs(hi.t[static_cast<size_t>(k)]));
+        if (!std::isfinite(largest)) refuse(terms_at(d, kMinWavelength), kMinWavelength, "a value past the range of a double");
+        struct Interval {
+            double a, b;
+            LawTerms ta, tb;
+        };
+        std::vector<Interval> todo;
+        for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+            const LawTerms ta = at(cuts[i]), tb = at(cuts[i + 1]);
+            check_point(ta, cuts[i]);
+            todo.push_back({cuts[i], cuts[i + 1], ta, tb});
+        }
+        for (int steps = 0; !todo.empty(); ++steps) {
+            const Interval iv = todo.back();
+            todo.pop_back();
+            double bound = 0;
+            for (int k = 0; k < iv.ta.count; ++k)
+                bound += std::fmin(iv.ta.t[static_cast<size_t>(k)], iv.tb.t[static_cast<size_t>(k)]);
+            if (bound > 0) continue;
+            const double m = 0.5 * (iv.a + iv.b);
+            const LawTerms tm = at(m);
+            check_point(tm, m);
+            // Still not shown > 0 on an interval of 1e-9 nm (39 halvings), or after 100 000
+            // intervals: a minimum that is zero to rounding.
+            if (iv.b - iv.a < 1e-9 || steps > 100000) refuse(terms_at(d, m), m, "0 to within rounding");
+            todo.push_back({iv.a, m, iv.ta, tm});
+            todo.push_back({m, iv.b, tm, iv.tb});
+        }
     }
 }
-
-}  // namespace
 
 Dispersion parse_dispersion(const nlohmann::json& j, const std::string& path) {
     if (j.is_string()) {

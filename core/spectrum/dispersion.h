@@ -33,13 +33,17 @@ constexpr double G = 430.78;    // Fe / Ca
 // monotone in λ between the law's poles: the index is that sum (or its root) taken left to
 // right, and the range check (check_range) bounds it from the terms' values at an
 // interval's ends. The formulas are written once, in the *_terms functions.
+// The Lorentz–Lorenz form (refractiveindex.info formula 8) sums R = (n² − 1)/(n² + 2), so
+// n² = (1 + 2R)/(1 − R); its range check asks 1 + 2R > 0 and 1 − R > 0 (both linear in
+// the terms, so still monotone between the poles).
 struct LawTerms {
-    std::array<double, 5> t{};
+    std::array<double, 10> t{};
     int count = 0;
-    bool squared = false;  // the sum is n²
+    bool squared = false;         // the sum is n²
+    bool lorentz_lorenz = false;  // the sum is (n² − 1)/(n² + 2)
     void add(double v) { t[static_cast<size_t>(count++)] = v; }
     double sum() const;    // left to right
-    double index() const;  // the sum, or its square root
+    double index() const;  // the sum, its square root, or n from the Lorentz–Lorenz sum
 };
 LawTerms cauchy_terms(double lambda_um, double A, double B, double C);
 LawTerms sellmeier_terms(double lambda_um, const double* B, const double* C, int terms);
@@ -78,6 +82,17 @@ AbbeModel abbe_model(double nd, double Vd);
 struct MoissaniteFormModel {
     double A = 0.0, B = 0.0, C = 0.0, D = 0.0;
 };
+// A refractiveindex.info database entry (core/spectrum/refractiveindex_info.h): one of
+// its formulas 1–9 with its coefficients C1…C17 (λ in µm), or its tabulated n, linear in λ
+// between the samples. `range_um` is the entry's stated range (it must cover 360–830 nm).
+struct FormulaModel {
+    int formula = 1;
+    std::vector<double> c;
+    double range_um[2] = {0, 0};
+};
+struct TabulatedModel {
+    std::vector<double> um, n;  // λ ascending
+};
 // POV-Ray's law; `samples` is POV-Ray's dispersion_samples (number of bands, >= 2).
 struct PovRayModel {
     double ior = 1.0;
@@ -86,7 +101,7 @@ struct PovRayModel {
 };
 
 using DispersionModel = std::variant<ConstantIndex, CauchyModel, SellmeierModel, AbbeModel,
-                                     MoissaniteFormModel, PovRayModel>;
+                                     MoissaniteFormModel, PovRayModel, FormulaModel, TabulatedModel>;
 
 struct Dispersion {
     DispersionModel model;
@@ -131,8 +146,13 @@ std::vector<std::string> uniaxial_crystal_names();
 //   {"model":"abbe","nd":1.5168,"Vd":64.17}
 //   {"model":"moissanite-form","A":..,"B":..,"C":..,"D":..}
 //   {"model":"povray","ior":2.417,"dispersion":1.05,"samples":7}   (samples optional)
-// The result must give a finite index > 0 over 360–830 nm.
+// The result must give a finite index > 0 over 360–830 nm. A file entry,
+//   {"file": "N-BK7.yml"}                      a refractiveindex.info entry
+// is read by read_dispersion_file (refractiveindex_info.h), relative to the scene file;
+// here it is refused (no scene file to be relative to).
 Dispersion parse_dispersion(const nlohmann::json& j, const std::string& path);
+// The continuous check over 360–830 nm (finite, > 0, no pole inside); errors name `path`.
+void check_range(const Dispersion& d, const std::string& path);
 // The same from text: a catalogue name, or JSON (an object or a number).
 Dispersion parse_dispersion_text(const std::string& text, const std::string& path);
 
