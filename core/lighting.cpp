@@ -6,13 +6,17 @@ Vec3 Lighting::shade(const SurfaceHit& h, const Pigment& pigment, double diffuse
                      RenderStats& stats) const {
     const Vec3 pig = rules_.pigment(pigment, h.hit.point);
     Vec3 c = ambient * pig;
+    // An area light: the sum of its grid's point lights, each shadowed as a point light.
     for (const Light& l : scene_.lights) {
-        const auto to = l.toward(h.hit.point);
-        if (!to) continue;
-        const double cos_l = h.normal.dot(to->dir);
-        if (cos_l <= 0) continue;
-        const Vec3 tr = rules_.light_transmittance(search_, h.hit.point, to->end, stats);
-        c += diffuse * cos_l * pig.cwiseProduct(l.color).cwiseProduct(tr);
+        const Vec3 colour = l.sample_color();
+        for (int k = 0; k < l.samples(); ++k) {
+            const auto to = l.toward(h.hit.point, k);
+            if (!to) continue;
+            const double cos_l = h.normal.dot(to->dir);
+            if (cos_l <= 0) continue;
+            const Vec3 tr = rules_.light_transmittance(search_, h.hit.point, to->end, stats);
+            c += diffuse * cos_l * pig.cwiseProduct(colour).cwiseProduct(tr);
+        }
     }
     return c;
 }
