@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <refract/core/area_light.h>
 #include <refract/core/environment_map.h>
 #include <refract/geometry/error.h>
 
@@ -48,20 +49,26 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
     const std::uint64_t per_target = targets.empty() ? 0 : std::max<std::uint64_t>(1, photons / targets.size());
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const Light& L = scene.lights[l];
-        if (L.kind == Light::Kind::Beam) {
-            Emitter em;
-            em.kind = Emitter::Kind::Disk;
-            em.origin = L.position;
-            em.axis = L.direction;
-            em.radius = L.radius;
-            em.photons = std::max<std::uint64_t>(1, photons);
-            em.power = L.color * (M_PI * L.radius * L.radius / static_cast<double>(em.photons));  // irradiance × area
-            em.stream = (std::uint64_t{1} << 40) + l;  // apart from the (light, target) streams
-            em.light = l;
-            em.frame = frame_across(em.axis);
-            check_power(scene, em, "/lights/" + std::to_string(l));
-            out.push_back(em);
-            continue;
+        switch (L.kind) {
+            case Light::Kind::Beam: {
+                Emitter em;
+                em.kind = Emitter::Kind::Disk;
+                em.origin = L.position;
+                em.axis = L.direction;
+                em.radius = L.radius;
+                em.photons = std::max<std::uint64_t>(1, photons);
+                em.power = L.color * (M_PI * L.radius * L.radius / static_cast<double>(em.photons));  // irradiance × area
+                em.stream = (std::uint64_t{1} << 40) + l;  // apart from the (light, target) streams
+                em.light = l;
+                em.frame = frame_across(em.axis);
+                check_power(scene, em, "/lights/" + std::to_string(l));
+                out.push_back(em);
+                continue;
+            }
+            case Light::Kind::Point:
+            case Light::Kind::Directional:
+            case Light::Kind::Rectangle:
+            case Light::Kind::Disk: break;
         }
         for (size_t t = 0; t < targets.size(); ++t) {
             const double R = targets[t].radius;
@@ -69,30 +76,57 @@ std::vector<Emitter> make_emitters(const Scene& scene, const std::vector<Boundin
             em.photons = per_target;
             em.stream = l * targets.size() + t;
             em.light = l;
-            if (L.kind == Light::Kind::Directional) {
-                em.kind = Emitter::Kind::Disk;
-                em.axis = L.direction;
-                em.cos_max = std::cos(0.5 * L.angular_diameter_deg * M_PI / 180.0);
-                const double back = R * 1.01 + 1e-6;  // the disk stands just outside the sphere
-                em.origin = targets[t].centre - back * L.direction;
-                // A tilted ray from the disk must still reach every point of the sphere.
-                const double tan_max = std::sqrt(std::fmax(0.0, 1.0 - em.cos_max * em.cos_max)) / em.cos_max;
-                em.radius = R + (back + R) * tan_max;
-                em.power = L.color * (M_PI * em.radius * em.radius / static_cast<double>(per_target));
-            } else {
-                const Vec3 to = targets[t].centre - L.position;
-                const double d = to.norm();
-                if (d <= R) continue;  // light inside the bounds
-                const double sin_max = R / d;
-                em.cos_max = std::sqrt(1.0 - sin_max * sin_max);
-                em.dref = (centre - L.position).norm();
-                // It cancels (the power grows with dref², the deposit's falloff divides by
-                // it): any positive value does, when the light sits at the targets' centre.
-                if (!(em.dref > 0)) em.dref = 1.0;
-                em.origin = L.position;
-                em.axis = to / d;
-                const double omega = 2.0 * M_PI * (1.0 - em.cos_max);
-                em.power = L.color * (em.dref * em.dref * omega / static_cast<double>(per_target));
+            switch (L.kind) {
+                case Light::Kind::Directional: {
+                    em.kind = Emitter::Kind::Disk;
+                    em.axis = L.direction;
+                    em.cos_max = std::cos(0.5 * L.angular_diameter_deg * M_PI / 180.0);
+                    const double back = R * 1.01 + 1e-6;  // the disk stands just outside the sphere
+                    em.origin = targets[t].centre - back * L.direction;
+                    // A tilted ray from the disk must still reach every point of the sphere.
+                    const double tan_max = std::sqrt(std::fmax(0.0, 1.0 - em.cos_max * em.cos_max)) / em.cos_max;
+                    em.radius = R + (back + R) * tan_max;
+                    em.power = L.color * (M_PI * em.radius * em.radius / static_cast<double>(per_target));
+                    break;
+                }
+                case Light::Kind::Point: {
+                    const Vec3 to = targets[t].centre - L.position;
+                    const double d = to.norm();
+                    if (d <= R) continue;  // light inside the bounds
+                    const double sin_max = R / d;
+                    em.cos_max = std::sqrt(1.0 - sin_max * sin_max);
+                    em.dref = (centre - L.position).norm();
+                    // It cancels (the power grows with dref², the deposit's falloff divides by
+                    // it): any positive value does, when the light sits at the targets' centre.
+                    if (!(em.dref > 0)) em.dref = 1.0;
+                    em.origin = L.position;
+                    em.axis = to / d;
+                    const double omega = 2.0 * M_PI * (1.0 - em.cos_max);
+                    em.power = L.color * (em.dref * em.dref * omega / static_cast<double>(per_target));
+                    break;
+                }
+                case Light::Kind::Rectangle:
+                case Light::Kind::Disk: {
+                    // Each point of the area emits as a point light does (isotropically, no
+                    // falloff): a photon starts at a uniform point of the grid's continuum
+                    // (core/area_light.h) into the cone about the target that covers it from
+                    // every point of the area (the whole sphere when the area comes within R).
+                    em.kind = Emitter::Kind::Area;
+                    em.area = &L;
+                    em.origin = targets[t].centre;
+                    // The farthest point of the area from its centre (the disk's grid reaches 0.501 of
+                    // its axes: POV-Ray's 0.001 offset).
+                    const double reach = L.kind == Light::Kind::Disk ? 0.502 * L.axis1.norm()
+                                                                     : 0.5 * (L.axis1.norm() + L.axis2.norm());
+                    const double d = (targets[t].centre - L.position).norm() - reach;
+                    em.cos_max = d > R ? std::sqrt(1.0 - (R / d) * (R / d)) : -1.0;
+                    em.dref = (centre - L.position).norm();
+                    if (!(em.dref > 0)) em.dref = 1.0;
+                    const double omega = 2.0 * M_PI * (1.0 - em.cos_max);
+                    em.power = L.color * (em.dref * em.dref * omega / static_cast<double>(per_target));
+                    break;
+                }
+                case Light::Kind::Beam: continue;
             }
             em.frame = frame_across(em.axis);
             check_power(scene, em, "/lights/" + std::to_string(l));
@@ -143,6 +177,13 @@ PhotonRay sample_photon(const Emitter& em, std::uint64_t seed, std::uint64_t p) 
         const double r = em.radius * std::sqrt(rng.uniform()), phi = 2.0 * M_PI * rng.uniform();
         const Vec3 origin = em.origin - em.radius * d + r * (std::cos(phi) * f.u + std::sin(phi) * f.v);
         return {Ray{origin, d}, em.environment->radiance(-d) * em.geometry};
+    }
+    if (em.kind == Emitter::Kind::Area) {
+        const double a = rng.uniform(), b = rng.uniform();
+        const Vec3 origin = area_light_point(*em.area, a, b);
+        const Vec3 axis = (em.origin - origin).normalized();
+        const double xi = rng.uniform(), phi = 2.0 * M_PI * rng.uniform();
+        return {Ray{origin, in_cone(axis, frame_across(axis), em.cos_max, xi, phi)}, em.power};
     }
     const double xi = rng.uniform();
     const double phi = 2.0 * M_PI * rng.uniform();

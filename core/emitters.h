@@ -8,6 +8,10 @@
 //                      the light; a sun of angular diameter α draws each direction
 //                      uniformly in its cone, of radiance E / (π sin²(α/2))
 //   beam               parallel photons uniform over its disk (whatever they hit)
+//   area (rectangle,   from a uniform point of the grid's continuum (core/area_light.h),
+//   disk)              isotropic as each grid point's point light, into the cone about
+//                      each target that covers it from anywhere on the area; power as a
+//                      point light's of the whole colour
 //   environment        (a background of type environment) directions uniform over the
 //                      sphere, each a parallel photon through the disk of each target's
 //                      radius across it, of power L(−d) · πR² · 4π / N (unpolarised)
@@ -29,9 +33,9 @@ struct Frame {
 Frame frame_across(const Vec3& axis);
 
 struct Emitter {
-    enum class Kind { Cone, Disk, Environment };
+    enum class Kind { Cone, Disk, Environment, Area };
     Kind kind = Kind::Cone;
-    Vec3 origin{0, 0, 0}, axis{0, 0, 1};  // cone apex / disk centre; the central direction
+    Vec3 origin{0, 0, 0}, axis{0, 0, 1};  // cone apex / disk centre / area: the target's centre; the central direction
     Frame frame;           // across the axis (made once, not per photon)
     Vec3 power{0, 0, 0};   // one photon's power (a cone's: at the reference distance)
     double cos_max = 1;    // cone: half-angle; disk: the sun's half-angle (1: parallel)
@@ -41,6 +45,7 @@ struct Emitter {
     size_t light = 0;            // index into Scene::lights (not for the environment)
     const Background* environment = nullptr;  // Environment: the radiance lookup
     double geometry = 0;         // Environment: πR² · 4π / N, times L(−d) per photon
+    const Light* area = nullptr; // Area: the light (its points: area_light_point)
 };
 
 // The polarisation an emitter's photons start with (the environment's: unpolarised).

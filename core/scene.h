@@ -53,15 +53,23 @@ struct PolarisationState {
 // kDirectionalDistance from the origin (where the POV-Ray export puts its `parallel`
 // light); a beam's to its starting disk. The eye passes see a sun as its centre
 // direction; its angular size spreads the light pass's photons (docs/scene-format.md).
+// An area light (a rectangle, or a disk as POV-Ray's `circular` grid) is the grid of
+// size[0] × size[1] point lights of colour color / (size[0]·size[1]) that
+// grid_point() places (POV-Ray's area_light without jitter; core/area_light.h).
 struct Light {
-    enum class Kind { Point, Directional, Beam };
+    enum class Kind { Point, Directional, Beam, Rectangle, Disk };
     Vec3 position{0, 10, 0};  // point light; a beam's starting centre
     Vec3 color{1, 1, 1};      // no distance falloff (POV-Ray default)
     PolarisationState polarisation;  // what the light pass's photons start with
     Kind kind = Kind::Point;
     Vec3 direction{0, -1, 0};  // directional and beam: unit, the way the light travels
     double angular_diameter_deg = 0;  // directional: the sun's disk (0: a point at infinity)
-    double radius = 0;                // beam: the cylinder's radius
+    double radius = 0;                // beam: the cylinder's radius; disk: its radius
+    // Rectangle: centred on `position`, edges axis1 and axis2; disk: axis1 = 2·radius·u,
+    // axis2 = 2·radius·v across `normal` (the export's area_light axes).
+    Vec3 axis1{0, 0, 0}, axis2{0, 0, 0};
+    Vec3 normal{0, 1, 0};             // disk: unit, the side it faces (either side lights)
+    std::array<int, 2> size{1, 1};    // area lights: the grid of point lights
     // The light's relative spectral power (spectral passes); when a light gives one, the
     // scene's render.spectral.light is that spectrum (docs/scene-format.md).
     std::optional<spectrum::LightSpectrum> spectrum;
@@ -69,7 +77,32 @@ struct Light {
     static constexpr double kDirectionalDistance = 1e5;
     // Directional: the point standing for the light (the export's light_source location).
     Vec3 directional_position() const { return -kDirectionalDistance * direction; }
-    bool parallel() const { return kind != Kind::Point; }
+    bool parallel() const {
+        switch (kind) {
+            case Kind::Directional:
+            case Kind::Beam: return true;
+            case Kind::Point:
+            case Kind::Rectangle:
+            case Kind::Disk: break;
+        }
+        return false;
+    }
+    // The point lights the light is made of: 1, or an area light's grid.
+    int samples() const {
+        switch (kind) {
+            case Kind::Rectangle:
+            case Kind::Disk: return size[0] * size[1];
+            case Kind::Point:
+            case Kind::Directional:
+            case Kind::Beam: break;
+        }
+        return 1;
+    }
+    // Point light k (0 ≤ k < samples()) of an area light's grid, row-major in size[0]
+    // (core/area_light.cpp); a point light's position.
+    Vec3 grid_point(int k) const;
+    // Each point light's colour.
+    Vec3 sample_color() const { return samples() == 1 ? color : color / static_cast<double>(samples()); }
 
     // Seen from point p: the unit direction towards the light and where a shadow ray from
     // p ends (a point light's position; for a directional light the plane across it
@@ -79,8 +112,14 @@ struct Light {
     struct Toward {
         Vec3 dir, end;
     };
-    std::optional<Toward> toward(const Vec3& p) const {
+    // Of point light k of an area light's grid (k is 0 for the other kinds).
+    std::optional<Toward> toward(const Vec3& p, int k = 0) const {
         switch (kind) {
+            case Kind::Rectangle:
+            case Kind::Disk: {
+                const Vec3 q = grid_point(k);
+                return Toward{(q - p).normalized(), q};
+            }
             case Kind::Directional:
                 return Toward{-direction, p - (directional_position() - p).dot(-direction) * direction};
             case Kind::Beam: {

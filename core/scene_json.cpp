@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <refract/core/environment_map.h>
+#include <refract/core/area_light.h>
 #include <refract/core/compat.h>
 #include <refract/core/integrators/integrator.h>
 #include <refract/core/json_reader.h>
@@ -529,8 +530,11 @@ Scene parse_scene(const json& j, const std::string& file) {
                 light.radius = l.number("radius");
                 if (!(light.radius > 0 && light.radius <= 1e15)) l.fail_at("radius", "must be in (0, 1e15]");
                 if (!(light.position.norm() < 1e150)) l.fail_at("position", "must lie within 1e150 of the origin");
+            } else if (type == "rectangle" || type == "disk") {
+                light.kind = type == "disk" ? Light::Kind::Disk : Light::Kind::Rectangle;
+                parse_area_light(l, light);
             } else {
-                l.fail_at("type", "unknown light type '" + clip_echo(type) + "' (point, directional, beam)");
+                l.fail_at("type", "unknown light type '" + clip_echo(type) + "' (point, directional, beam, rectangle, disk)");
             }
             // Colours scale every sum of the render: negative or astronomically large ones
             // would give negative or infinite pixels.

@@ -488,15 +488,29 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     o << camera(s.camera, s.settings.samples);
     o << background(s.background, opt.environment_map);
     for (const Light& l : s.lights) {
-        if (l.kind == Light::Kind::Directional) {
-            // POV-Ray's parallel light: shadow rays along −direction to the plane through
-            // the location (trace.cpp ComputeOneWhiteLightRay), as refract's directional light
-            // (whose eye passes see a sun of any angular size as its centre direction).
-            const Vec3 at = l.directional_position();
-            o << "light_source { " << vec(at) << " color rgb " << vec(l.color) << " parallel point_at " << vec(at + l.direction)
-              << " }\n";
-        } else {
-            o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
+        switch (l.kind) {
+            case Light::Kind::Directional: {
+                // POV-Ray's parallel light: shadow rays along −direction to the plane through
+                // the location (trace.cpp ComputeOneWhiteLightRay), as refract's directional light
+                // (whose eye passes see a sun of any angular size as its centre direction).
+                const Vec3 at = l.directional_position();
+                o << "light_source { " << vec(at) << " color rgb " << vec(l.color) << " parallel point_at "
+                  << vec(at + l.direction) << " }\n";
+                break;
+            }
+            case Light::Kind::Rectangle:
+            case Light::Kind::Disk:
+                // The grid without jitter; area_illumination lights from each grid point (not
+                // the centre). POV-Ray's shadow is still its adaptive corner average
+                // (docs/validation.md): the two agree exactly for a 2 × 2 grid.
+                o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " area_light "
+                  << vec(l.axis1) << ", " << vec(l.axis2) << ", " << l.size[0] << ", " << l.size[1]
+                  << (l.kind == Light::Kind::Disk ? " circular" : "") << " area_illumination on }\n";
+                break;
+            case Light::Kind::Point:
+            case Light::Kind::Beam:  // refused above
+                o << "light_source { " << vec(l.position) << " color rgb " << vec(l.color) << " }\n";
+                break;
         }
     }
 
