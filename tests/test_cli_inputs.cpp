@@ -184,7 +184,7 @@ TEST_CASE("refract render and trace: a refractiveindex.info dispersion file with
 }
 
 TEST_CASE("refract export-pov: a refractiveindex.info dispersion is refused with its label (POV-Ray has no "
-          "Sellmeier law); a thin lens is written as focal blur",
+          "Sellmeier law), and a thin lens is written as focal blur",
           "[cli][errors][refractiveindex]") {
     const fs::path dir = fresh_dir("rii-pov");
     const std::string data = std::string(REFRACT_SOURCE_DIR) + "/tests/data/refractiveindex/N-BK7.yml";

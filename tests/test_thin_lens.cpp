@@ -56,7 +56,7 @@ TEST_CASE("thin lens: every lens sample of a pixel meets the pinhole ray on the 
     }
 }
 
-TEST_CASE("thin lens: one pixel's rays spread at depth z over a disk of diameter aperture*|z - f|/f; the lens "
+TEST_CASE("thin lens: one pixel's rays spread at depth z over a disk of diameter aperture*|z - f|/f, the lens "
           "edge on its rim",
           "[camera][thin-lens]") {
     const Camera c = lens_camera(0.4, 5.0);
@@ -73,7 +73,7 @@ TEST_CASE("thin lens: one pixel's rays spread at depth z over a disk of diameter
 }
 
 TEST_CASE("thin lens render: a lamp at depth 10 seen with focus 5 spreads over the circle of confusion, diameter "
-          "aperture*|z - f|/z = 0.5 on the plane in focus (8.38 px); at depth 5 it stays a point",
+          "aperture*|z - f|/z = 0.5 on the plane in focus (8.38 px), at depth 5 it stays a point",
           "[camera][thin-lens]") {
     // 61×61 pixels, 40° across: the plane in focus (depth 5) is 2·5·tan 20° = 3.640 wide,
     // 0.05967 per pixel. The lamp's radius is 0.012·z, 0.06 (1 px) on the plane in focus.
