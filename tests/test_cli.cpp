@@ -223,7 +223,7 @@ TEST_CASE("refract trace through calcite: each segment inside names its wave (o/
     fs::remove_all(dir);
 }
 
-TEST_CASE("Command-line slips: an unknown command, subcommand or option names the nearest known one; --version",
+TEST_CASE("Command-line slips: an unknown command, subcommand or option names the nearest known one, and --version",
           "[cli][errors]") {
     const fs::path dir = fresh_dir("slips");
     check_refused(run("rendr scene.json -o x.png", dir), "unknown command 'rendr' (did you mean 'render'?)");
@@ -245,7 +245,7 @@ TEST_CASE("Command-line slips: an unknown command, subcommand or option names th
     CHECK(line.size() > 8);
 }
 
-TEST_CASE("render --seed replaces the scene's render.seed; a negative seed is refused, not wrapped", "[cli]") {
+TEST_CASE("render --seed replaces the scene's render.seed, and a negative seed is refused, not wrapped", "[cli]") {
     const fs::path dir = fresh_dir("seed");
     std::ifstream in(std::string(REFRACT_SOURCE_DIR) + "/scenes/rtiow/convergence_stochastic.json");
     std::stringstream text;

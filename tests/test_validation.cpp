@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <unistd.h>
 
@@ -449,9 +450,15 @@ TEST_CASE("refract (compat povray) and POV-Ray 3.7 agree on the validation scene
     CHECK(r.skipped == 0);
     CHECK(r.failed == 0);
     CHECK(r.passed == static_cast<int>(r.cases.size()));
-    for (const CaseResult& c : r.cases)
+    // About the 16-bit output step, but for the cases compared under their own tolerance
+    // (docs/validation.md): focal blur, whose lens samples differ from POV-Ray's (compared as
+    // 8×8 means), and the area light, whose shadow POV-Ray samples adaptively.
+    const std::set<std::string> own_tolerance{"focal-blur", "area-light"};
+    for (const CaseResult& c : r.cases) {
+        if (own_tolerance.count(c.name)) continue;
         for (const Metric& m : c.metrics)
-            if (m.name == "compat vs povray: rmse") CHECK(m.value < 2e-5);  // about the 16-bit output step
+            if (m.name == "compat vs povray: rmse") CHECK(m.value < 2e-5);
+    }
 }
 
 TEST_CASE("validate stays inside its output directory: a case named '..' or with a slash is refused",
