@@ -106,15 +106,19 @@ void append_facets(Gem& gem, const std::vector<Pl>& planes, const std::vector<st
             f.vertex_ids.push_back(it->second);
             f.polygon.push_back(gem.mesh.vertices[static_cast<std::size_t>(it->second)]);
         }
-        const int facet = static_cast<int>(gem.facets.size());
-        for (std::size_t v = 1; v + 1 < f.vertex_ids.size(); ++v) {
-            gem.mesh.triangles.emplace_back(f.vertex_ids[0], f.vertex_ids[v], f.vertex_ids[v + 1]);
-            gem.triangle_facet.push_back(facet);
-        }
-        gem.solid.planes.push_back(f.plane);
-        gem.solid.labels.push_back(f.label);
-        gem.facets.push_back(std::move(f));
+        append_facet(gem, std::move(f));
     }
+}
+
+void append_facet(Gem& gem, GemFacet f) {
+    const int facet = static_cast<int>(gem.facets.size());
+    for (std::size_t v = 1; v + 1 < f.vertex_ids.size(); ++v) {
+        gem.mesh.triangles.emplace_back(f.vertex_ids[0], f.vertex_ids[v], f.vertex_ids[v + 1]);
+        gem.triangle_facet.push_back(facet);
+    }
+    gem.solid.planes.push_back(f.plane);
+    gem.solid.labels.push_back(f.label);
+    gem.facets.push_back(std::move(f));
 }
 
 }  // namespace refract::exact

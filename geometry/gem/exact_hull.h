@@ -39,6 +39,10 @@ using Fail = void (*)(const std::string& why);
 // earlier plane). The solid must be bounded (callers add bounding planes when unsure).
 std::vector<Loop> facet_loops(const std::vector<Pl>& planes, const P3& inside, Fail fail);
 
+// Appends facet f (its vertex_ids and polygon filled) to `gem`: fanned into triangles, its
+// plane and label added to the solid.
+void append_facet(Gem& gem, GemFacet f);
+
 // Appends the non-empty loops to `gem` as facets in plane order: exactly equal points become
 // one vertex, planes become unit doubles, each facet is fanned into triangles.
 void append_facets(Gem& gem, const std::vector<Pl>& planes, const std::vector<std::string>& labels,

@@ -122,14 +122,7 @@ void merge_close_vertices(Gem& gem, double tol) {
             g.vertex_ids.push_back(it->second);
             g.polygon.push_back(v[static_cast<std::size_t>(r)]);
         }
-        const int facet = static_cast<int>(out.facets.size());
-        for (std::size_t k = 1; k + 1 < g.vertex_ids.size(); ++k) {
-            out.mesh.triangles.emplace_back(g.vertex_ids[0], g.vertex_ids[k], g.vertex_ids[k + 1]);
-            out.triangle_facet.push_back(facet);
-        }
-        out.solid.planes.push_back(g.plane);
-        out.solid.labels.push_back(g.label);
-        out.facets.push_back(std::move(g));
+        exact::append_facet(out, std::move(g));
     }
     gem = std::move(out);
 }
