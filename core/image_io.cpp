@@ -41,7 +41,7 @@ const ImageIoModule* load(std::string& error) {
     for (const auto& path : paths) {
         std::error_code ec;
         if (paths.size() > 1 && !fs::exists(path, ec)) continue;
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
         if (!handle) {
             const char* e = dlerror();
             if (first_failure.empty()) first_failure = e ? e : path + ": cannot be loaded";

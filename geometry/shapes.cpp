@@ -285,8 +285,11 @@ std::vector<Vec3> vertices(const ConvexPolyhedron& c) {
                 A.row(2) = c.planes[k].normal.transpose();
                 if (std::abs(A.determinant()) < 1e-12) continue;
                 const Vec3 p = A.partialPivLu().solve(Vec3(c.planes[i].offset, c.planes[j].offset, c.planes[k].offset));
-                bool inside = true;
-                for (const Plane& q : c.planes) inside = inside && q.normal.dot(p) <= q.offset + 1e-9;
+                // Most triples meet outside the solid: stop at the first plane that cuts
+                // the point away.
+                const bool inside = std::all_of(c.planes.begin(), c.planes.end(), [&](const Plane& q) {
+                    return q.normal.dot(p) <= q.offset + 1e-9;
+                });
                 if (inside) v.push_back(p);
             }
     return v;

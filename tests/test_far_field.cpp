@@ -359,9 +359,9 @@ json dispersive_drop() {
 
 // Bit-identity holds for any count: the sanitizer build (ten times slower) walks fewer.
 #ifdef REFRACT_SANITIZED
-constexpr std::uint64_t kPacketPhotons = 4000;
+constexpr std::uint64_t kPacketPhotons = 1000, kSmallPhotons = 500;
 #else
-constexpr std::uint64_t kPacketPhotons = 20000;
+constexpr std::uint64_t kPacketPhotons = 20000, kSmallPhotons = 5000;
 #endif
 
 TEST_CASE("Far field: the wavelengths of a photon walked in packets give the one-by-one result to the last bit",
@@ -386,9 +386,9 @@ TEST_CASE("Far field: the wavelengths of a photon walked in packets give the one
                                 {"material", "glass"},
                                 {"planes", {{0, 0, 1, 2.5}, {0, 0, -1, -1.5}, {1, 0, 0, 1.5}, {-1, 0, 0, 1.5},
                                             {0, 1, 0, 1.5}, {0, -1, 0, 1.5}}}});
-        check_same(lanes_and_alone(j, axis_bins(90, 5000)), false);
+        check_same(lanes_and_alone(j, axis_bins(90, kSmallPhotons)), false);
         json k = dispersive_drop();
         k["materials"]["glass"]["reflectance"] = "schlick";
-        check_same(lanes_and_alone(k, axis_bins(90, 5000)), false);
+        check_same(lanes_and_alone(k, axis_bins(90, kSmallPhotons)), false);
     }
 }

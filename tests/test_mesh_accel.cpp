@@ -49,7 +49,7 @@ TEST_CASE("Icosphere: 20·4^s triangles, closed, wound counter-clockwise seen fr
 
 // Random rays of the Embree test: fewer in the sanitizer build (ten times slower).
 #ifdef REFRACT_SANITIZED
-constexpr int kMeshRays = 4000;
+constexpr int kMeshRays = 1000;
 #else
 constexpr int kMeshRays = 20000;
 #endif
