@@ -42,10 +42,10 @@ void run_import(const ImportArgs& a) {
     if (rel.empty()) rel = model;
     const refract::GltfImport im = refract::import_gltf(a.model, rel.generic_string(), a.width, a.height);
     // The scene as refract reads it: anything it would refuse is refused here, before a
-    // warning is printed or a file written.
+    // file is written. The warnings follow the written file (an error stays one line).
     const refract::Scene scene = refract::parse_scene(im.scene, a.output);
-    warn(im.warnings);
     refract::write_file_atomic(a.output, im.scene.dump(1) + "\n");
+    warn(im.warnings);
     std::cout << "wrote " << a.output << ": " << scene.objects.size() << " objects, " << scene.materials.size()
               << " materials, " << scene.lights.size() << " lights, " << im.warnings.size() << " warnings\n";
 }
@@ -60,8 +60,8 @@ void run_export(const ExportArgs& a) {
         throw refract::InputError("--output: '" + a.output + "': a glTF file must end in .glb or .gltf");
     const refract::Scene scene = refract::load_scene(a.scene);
     const refract::GltfExport out = refract::export_gltf(scene, ext == ".glb");
-    warn(out.warnings);
     refract::write_file_atomic(a.output, out.bytes);
+    warn(out.warnings);
     std::cout << "wrote " << a.output << " (" << out.bytes.size() << " bytes, " << out.warnings.size() << " warnings)\n";
 }
 
