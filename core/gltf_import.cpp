@@ -308,7 +308,9 @@ struct Importer {
             W = extras["width"].get<int>();
             H = extras["height"].get<int>();
         }
-        if (!(aspect > 0)) aspect = W && H ? static_cast<double>(W) / H : 4.0 / 3.0;
+        if (aspect != 0 && !(aspect >= 1e-4 && aspect <= 1e4))
+            d.fail(where, "the aspect ratio " + format_value(aspect) + " is outside [1e-4, 1e4]");
+        if (aspect == 0) aspect = W && H ? static_cast<double>(W) / H : 4.0 / 3.0;
         if (!W) W = H ? static_cast<int>(std::lround(H * aspect)) : 640;
         if (!H) H = static_cast<int>(std::lround(W / aspect));
         out["width"] = std::max(W, 1);
