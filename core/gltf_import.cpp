@@ -478,7 +478,10 @@ GltfImport import_gltf(const std::string& path, const std::string& mesh_file, in
     std::vector<bool> seen(nodes.size(), false);
     for (int r : roots) im.node(r, Affine::Identity(), "", -1, 0, seen);
 
-    if (im.objects.empty()) d.fail("/nodes", "no mesh node to import");
+    if (im.objects.empty())
+        d.fail("/nodes", im.node_names.empty() || out.warnings.empty()
+                             ? "no mesh node to import"
+                             : "no mesh node to import (a mesh node without a unique name is left out)");
     json& s = out.scene;
     s["description"] = "imported from " + fs::path(path).filename().string() + " by refract import";
     if (!im.camera) {
