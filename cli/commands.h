@@ -3,6 +3,7 @@
 //   static refract::cli::Registrar reg{30, [](CLI::App& app) { ... app.add_subcommand ... }};
 // Callbacks throw refract::InputError for bad input; main() prints one line and exits 2.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -31,6 +32,9 @@ inline void add_max_memory(CLI::App* sub, std::uint64_t& bytes) {
         "--max-memory", [&bytes](const std::string& v) { bytes = refract::parse_memory_size(v, "--max-memory"); },
         "Memory budget (e.g. 512M, 4G; default 3/4 of physical memory): refused before allocating beyond it");
 }
+
+// A message as one line of printable text (cli/main.cpp): warnings and errors alike.
+std::string printable(const std::string& text);
 
 // True when stderr is a terminal (progress bars only then).
 bool stderr_is_terminal();

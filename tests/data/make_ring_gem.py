@@ -4,6 +4,10 @@ two nodes, "ring" (a torus standing in the xy plane, at the origin) and "gem" (a
 stone translated onto the ring's top), and two scenes rendering it the same way:
 ring-gem.json (the meshes read from ring-gem.glb by node) and ring-gem-inline.json (the
 same triangles written inline, the gem's node translation as the object's transform).
+The file is a whole glTF scene too (`refract import`, docs/gltf.md): its materials (gold,
+metallic; the gem a dielectric by KHR_materials_transmission, _ior, _volume and
+_dispersion), a camera and a KHR_lights_punctual point light; ring-gem-gltf.json is that
+scene written by hand.
 Standard library only. Coordinates are single-precision values (glTF stores float32), each
 mesh's vertices listed in the order its triangles first use them, without -0, so that the
 two scenes hold the same numbers. Run: python3 tests/data/make_ring_gem.py"""
@@ -80,10 +84,27 @@ def gem(n=8, girdle=0.3, table=0.17, crown=0.1, pavilion=0.26):
 GEM_AT = [0.0, 1.375, 0.0]  # the gem node's translation (exact in float32)
 
 
+# The glTF scene: the gem's Abbe number V_d as KHR_materials_dispersion's 20/V_d, a faint
+# yellow absorption (attenuation colour after a distance), a camera 2.5 in front of the ring
+# turned half a turn about y (glTF's camera looks along its -z) and a point light.
+ND, VD = 2.417, 55.3
+ATTENUATION, DISTANCE = [0.9, 0.95, 1.0], 2.0
+CAMERA_AT, VFOV_DEG = [0.0, 1.25, -2.5], 35
+LIGHT_AT = [2.0, 5.0, -4.0]
+MATERIALS = [
+    {"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [0.95, 0.75, 0.3, 1.0], "metallicFactor": 1.0,
+                                              "roughnessFactor": 0.0}},
+    {"name": "diamond", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0},
+     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": ND},
+                    "KHR_materials_volume": {"thicknessFactor": 0.5, "attenuationColor": ATTENUATION,
+                                             "attenuationDistance": DISTANCE},
+                    "KHR_materials_dispersion": {"dispersion": 20 / VD}}}]
+
+
 def write_glb(path, meshes):
     bin_ = bytearray()
     views, accessors, gmeshes, nodes = [], [], [], []
-    for name, (verts, tris), translation in meshes:
+    for material, (name, (verts, tris), translation) in enumerate(meshes):
         pos = b"".join(struct.pack("<3f", *v) for v in verts)
         idx = b"".join(struct.pack("<3I", *t) for t in tris)
         for data, target in ((pos, 34962), (idx, 34963)):
@@ -96,13 +117,23 @@ def write_glb(path, meshes):
                           "max": [max(v[c] for v in verts) for c in range(3)]})
         accessors.append({"bufferView": len(views) - 1, "componentType": 5125, "count": 3 * len(tris), "type": "SCALAR"})
         gmeshes.append({"name": name, "primitives": [{"attributes": {"POSITION": len(accessors) - 2},
-                                                      "indices": len(accessors) - 1, "mode": 4}]})
+                                                      "indices": len(accessors) - 1, "mode": 4,
+                                                      "material": material}]})
         node = {"name": name, "mesh": len(gmeshes) - 1}
         if translation:
             node["translation"] = translation
         nodes.append(node)
+    nodes.append({"name": "camera", "camera": 0, "translation": CAMERA_AT, "rotation": [0.0, 1.0, 0.0, 0.0]})
+    nodes.append({"name": "light", "translation": LIGHT_AT, "extensions": {"KHR_lights_punctual": {"light": 0}}})
     doc = {"asset": {"version": "2.0", "generator": "refract tests/data/make_ring_gem.py"},
            "scene": 0, "scenes": [{"nodes": list(range(len(nodes)))}], "nodes": nodes, "meshes": gmeshes,
+           "materials": MATERIALS,
+           "cameras": [{"type": "perspective", "extras": {"width": 64, "height": 48},
+                        "perspective": {"yfov": math.radians(VFOV_DEG), "aspectRatio": 4 / 3, "znear": 0.01}}],
+           "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1.0, 1.0, 1.0],
+                                                              "intensity": 1.0}]}},
+           "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_dispersion", "KHR_materials_ior",
+                              "KHR_materials_transmission", "KHR_materials_volume"],
            "accessors": accessors, "bufferViews": views, "buffers": [{"byteLength": len(bin_)}]}
     js = json.dumps(doc, separators=(",", ":")).encode()
     while len(js) % 4:
@@ -138,6 +169,17 @@ def main():
     for name, objs in (("ring-gem.json", by_file), ("ring-gem-inline.json", inline)):
         with open(os.path.join(HERE, name), "w") as f:
             f.write(json.dumps(scene(objs), indent=1) + "\n")
+    # The glTF scene by hand, as refract's scene format says it (docs/gltf.md's mapping).
+    gltf_scene = {
+        "description": "ring-gem.glb's glTF scene written by hand (tests/data/make_ring_gem.py)",
+        "camera": {"location": CAMERA_AT, "look_at": [0, 1.25, 0], "vfov": VFOV_DEG, "width": 64, "height": 48},
+        "materials": {"gold": {"type": "metal", "color": [0.95, 0.75, 0.3]},
+                      "diamond": {"type": "dielectric", "dispersion": {"model": "abbe", "nd": ND, "Vd": VD},
+                                  "absorption": {"transmittance": ATTENUATION, "thickness": DISTANCE}}},
+        "objects": [dict(o) for o in by_file],
+        "lights": [{"position": LIGHT_AT, "color": [1, 1, 1]}]}
+    with open(os.path.join(HERE, "ring-gem-gltf.json"), "w") as f:
+        f.write(json.dumps(gltf_scene, indent=1) + "\n")
 
 
 if __name__ == "__main__":
