@@ -33,17 +33,18 @@ Scene load_case(const RandomSceneFiles& c, const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("Random scenes with area lights and mesh files: the same scenes otherwise, read back through the mesh-file "
-          "reader, exported to POV-Ray with area_light and mesh2",
+          "reader, exported to POV-Ray with area_light and mesh2 (transforms on)",
           "[random]") {
     const fs::path dir = test::fresh_dir("random", "features");
-    RandomSceneOptions both;
+    RandomSceneOptions moved, both;  // with transforms: mesh files placed by a matrix too
+    moved.transforms = both.transforms = true;
     both.area_lights = both.mesh_files = true;
     int rectangles = 0, disks = 0, files = 0, seeds_with_both = 0;
     for (std::uint64_t seed = 0; seed < 60; ++seed) {
         INFO("seed " << seed);
-        const json plain = random_scene(seed);
-        CHECK(random_scene_files(seed).scene == plain);  // off: nothing changes
-        CHECK(random_scene_files(seed).files.empty());
+        const json plain = random_scene(seed, moved);
+        CHECK(random_scene_files(seed, moved).scene == plain);  // off: nothing changes
+        CHECK(random_scene_files(seed, moved).files.empty());
         const RandomSceneFiles c = random_scene_files(seed, both);
         // The objects as before, but for the meshes moved into files (same name and material).
         REQUIRE(c.scene["objects"].size() == plain["objects"].size());
