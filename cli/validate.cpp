@@ -25,7 +25,7 @@ struct ValidateArgs {
     int random = -1;
     std::uint64_t seed = 1;
     std::vector<int> size{80, 60};  // W H
-    bool no_dispersion = false, no_shrink = false, transforms = false;
+    bool no_dispersion = false, no_shrink = false, transforms = false, area_lights = false, mesh_files = false;
     double timeout = 60;
 };
 
@@ -51,6 +51,10 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_flag("--no-dispersion", args->no_dispersion, "--random: no dispersive materials");
     sub->add_flag("--transforms", args->transforms,
                   "--random: objects written untransformed with a random transform (the same scenes otherwise)");
+    sub->add_flag("--area-lights", args->area_lights,
+                  "--random: about half of the point lights made 2x2 rectangle or disk area lights (the same scenes otherwise)");
+    sub->add_flag("--mesh-files", args->mesh_files,
+                  "--random: about half of the meshes written as OBJ files in the case's directory (OUT/seed-N)");
     sub->add_flag("--no-shrink", args->no_shrink, "--random: do not shrink failures");
     sub->add_option("--timeout", args->timeout, "--random: POV-Ray time limit per scene, seconds (60)")
         ->check(CLI::Range(0.001, 86400.0));
@@ -116,6 +120,8 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             ro.scene.height = args->size[1];
             ro.scene.dispersion = !args->no_dispersion;
             ro.scene.transforms = args->transforms;
+            ro.scene.area_lights = args->area_lights;
+            ro.scene.mesh_files = args->mesh_files;
             ro.shrink = !args->no_shrink;
             ro.jobs = args->threads;
             ro.povray.executable = args->povray;

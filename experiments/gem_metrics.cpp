@@ -36,13 +36,13 @@ struct Mean {
 // The eye ray of sample i of a metric (stream): the viewer's direction v drawn uniformly
 // over the cap of directions within `cone_deg` of the axis; a distant viewer, so parallel
 // rays along −v through points drawn uniformly over the stone's outline seen from v
-// (rejection from the disk of radius 1.1 across v about the stone's centre).
+// (rejection from the disk of radius 1.1·frame across v about the stone's centre).
 struct EyeSample {
     Ray ray;
     Vec3 viewer;  // unit, from the stone towards the eye
     Rng rng;      // the sample's stream, continued (spot-layout rotations)
 };
-EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg) {
+EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg, double frame) {
     Rng rng(seed, stream, static_cast<std::uint64_t>(i));
     Vec3 v(0, 0, 1);
     if (cone_deg > 0) {
@@ -52,8 +52,8 @@ EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, i
     }
     const Vec3 a = (std::abs(v.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(v).normalized(), b = v.cross(a);
     for (;;) {
-        const double r = 1.1 * std::sqrt(rng.uniform()), phi = 2 * M_PI * rng.uniform();
-        const Ray ray{r * std::cos(phi) * a + r * std::sin(phi) * b + 4.0 * v, -v};
+        const double r = 1.1 * frame * std::sqrt(rng.uniform()), phi = 2 * M_PI * rng.uniform();
+        const Ray ray{r * std::cos(phi) * a + r * std::sin(phi) * b + 4.0 * frame * v, -v};
         if (intersect(gem.solid, ray, 0.0, 1e30)) return {ray, v, rng};
     }
 }
@@ -107,7 +107,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> by_kind(t.kinds().size(), 0.0);
     for (int i = 0; i < N; ++i) {
         const int band = t.band_by_luminance(golden(i));
-        const EyeSample eye = eye_sample(gem, o.seed, 1, i, o.viewer_cone_deg);
+        const EyeSample eye = eye_sample(gem, o.seed, 1, i, o.viewer_cone_deg, o.frame);
         const auto tr = t.trace(eye.ray, band, exits);
         double returned = 0, pav = 0;
         for (const auto& e : exits) {
@@ -160,7 +160,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> r(static_cast<size_t>(W)), coloured(static_cast<size_t>(W), 0.0);
     const Eigen::Matrix3d none = Eigen::Matrix3d::Identity();
     for (int i = 0; i < NF; ++i) {
-        EyeSample eye = eye_sample(gem, o.seed, 2, i, o.viewer_cone_deg);
+        EyeSample eye = eye_sample(gem, o.seed, 2, i, o.viewer_cone_deg, o.frame);
         for (int b = 0; b < W; ++b) {
             t.trace(eye.ray, b, exits);
             band_probes[static_cast<size_t>(b)].fill(exits, none);
@@ -193,7 +193,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::array<Probes, 3> tilt_probes;
     Mean scint;
     for (int i = 0; i < NS; ++i) {
-        EyeSample eye = eye_sample(gem, o.seed, 3, i, o.viewer_cone_deg);
+        EyeSample eye = eye_sample(gem, o.seed, 3, i, o.viewer_cone_deg, o.frame);
         const int band = t.band_by_luminance(golden(i));
         for (size_t k = 0; k < 3; ++k) {
             // The stone turned by tilts[k], viewer and lights fixed: in the stone's frame the

@@ -34,6 +34,11 @@ struct MetricOptions {
     // of the stone's axis (the observer moving the head a little, as a tilted stone would
     // be seen); 0: straight above.
     double viewer_cone_deg = 10.0;
+    // The stone's size across the viewer's line, in its own units: 1 for the brilliant
+    // (girdle radius 1); any other stone (a design, experiments/design_metrics.h) the largest
+    // distance of a vertex from the origin. Eye rays start 4·frame from the stone and are
+    // drawn over the disk of radius 1.1·frame; the images span 2.1·frame.
+    double frame = 1.0;
 };
 
 // A measured value and its standard error (one sigma, from the ray statistics).

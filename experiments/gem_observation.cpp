@@ -95,6 +95,14 @@ Region region_of_kind(const std::string& kind) {
     return Region::Crown;
 }
 
+Region region_of_facet(const std::string& kind, const Vec3& normal) {
+    static const std::vector<std::string> brilliant{"table", "star", "bezel", "upper half",
+                                                    "girdle", "lower half", "pavilion main", "culet"};
+    if (std::find(brilliant.begin(), brilliant.end(), kind) != brilliant.end()) return region_of_kind(kind);
+    if (normal.z() > 1e-9) return Region::Crown;
+    return normal.z() < -1e-9 ? Region::Pavilion : Region::Girdle;
+}
+
 std::vector<std::string> leakage_kinds() { return {"girdle", "lower half", "pavilion main", "culet"}; }
 
 void validate(const MetricOptions& o) {
@@ -113,6 +121,7 @@ void validate(const MetricOptions& o) {
     if (!(o.tilt_deg > 0 && o.tilt_deg <= 45)) bad("tilt_deg", o.tilt_deg, "(0, 45]");
     if (!(o.viewer_cone_deg >= 0 && o.viewer_cone_deg <= 45)) bad("viewer_cone_deg", o.viewer_cone_deg, "[0, 45]");
     if (o.spot_rotations < 1 || o.spot_rotations > 4096) bad("spot_rotations", o.spot_rotations, "1..4096");
+    if (!(o.frame > 0 && o.frame <= 1e6)) bad("frame", o.frame, "(0, 1e6]");
 }
 
 std::vector<double> metric_wavelengths(const MetricOptions& o) {
@@ -155,15 +164,18 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
     scene_->settings.max_depth = max_depth_ = o.max_depth;
     tracer_ = std::make_unique<SceneTracer>(*scene_);
 
-    for (const std::string& label : gem.solid.labels) {
-        const std::string k = facet_kind(label);
-        auto it = std::find(kinds_.begin(), kinds_.end(), k);
-        if (it == kinds_.end()) {
+    // A kind is a facet kind in one region (a design may give a crown and a pavilion tier
+    // the same name).
+    for (size_t i = 0; i < gem.solid.labels.size(); ++i) {
+        const std::string k = facet_kind(gem.solid.labels[i]);
+        const Region r = region_of_facet(k, gem.solid.planes[i].normal);
+        size_t j = 0;
+        while (j < kinds_.size() && !(kinds_[j] == k && regions_[j] == r)) ++j;
+        if (j == kinds_.size()) {
             kinds_.push_back(k);
-            regions_.push_back(region_of_kind(k));
-            it = kinds_.end() - 1;
+            regions_.push_back(r);
         }
-        plane_kind_.push_back(static_cast<int>(it - kinds_.begin()));
+        plane_kind_.push_back(static_cast<int>(j));
     }
 }
 
@@ -288,7 +300,7 @@ Image render_view(const Gem& gem, const std::string& view, int size, int samples
     const bool below = view == "hearts";
     const Vec3 up = below ? Vec3(0, 0, -1) : Vec3(0, 0, 1);
     const int band = t.middle_band();
-    const double half = 1.05;
+    const double half = 1.05 * o.frame, far = 4.0 * o.frame;
     Image img(size, size);
     std::vector<GemTracer::Exit> exits;
     for (int j = 0; j < size; ++j)
@@ -299,7 +311,7 @@ Image render_view(const Gem& gem, const std::string& view, int size, int samples
                     const double x = -half + 2 * half * (i + (sx + 0.5) / samples) / size;
                     const double y = half - 2 * half * (j + (sy + 0.5) / samples) / size;
                     // From below, the image's right is the stone's −x (mirrored, as drawn).
-                    const Ray r{below ? Vec3(-x, y, -4.0) : Vec3(x, y, 4.0), -up};
+                    const Ray r{below ? Vec3(-x, y, -far) : Vec3(x, y, far), -up};
                     t.trace(r, band, exits);
                     for (const auto& e : exits) {
                         if (e.kind < 0) {  // missed the stone: the viewer's dark background

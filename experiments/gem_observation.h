@@ -75,6 +75,10 @@ Vec3 hearts_arrows_colour(const Vec3& d, const Vec3& up);
 // Where light leaves the stone: facet kinds grouped.
 enum class Region { Crown, Girdle, Pavilion };
 Region region_of_kind(const std::string& kind);
+// A facet's region: the brilliant's kinds by name (region_of_kind); any other (a design's
+// tier names) by the side its outward normal faces: up the crown, down the pavilion,
+// level (|n_z| <= 1e-9) the girdle.
+Region region_of_facet(const std::string& kind, const Vec3& normal);
 // The kinds light leaks through, in GemMetrics::leakage_by_kind's order (each listed,
 // 0 when the cut has none): girdle, lower half, pavilion main, culet.
 std::vector<std::string> leakage_kinds();
@@ -135,7 +139,7 @@ private:
 std::vector<double> metric_wavelengths(const MetricOptions& options);
 
 // Images of the viewers (docs/gem-metrics.md), `size` pixels square over the girdle
-// (2.1 units across), one eye ray per pixel at `samples`² fixed sub-pixel positions, at
+// (2.1·options.frame units across), one eye ray per pixel at `samples`² fixed sub-pixel positions, at
 // the band nearest 560 nm. Face-up views look down the z axis (table up): "aset",
 // "ideal-scope", "arrows"; "hearts" looks at the pavilion from below (table down),
 // mirrored as seen from below; "brilliance" shows the brilliance set-up's radiance.

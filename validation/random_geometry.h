@@ -201,5 +201,7 @@ std::optional<Solid> place(const Template& t, const Vec3& p, const std::string& 
 // of their own: the objects stay where they were, each written untransformed plus its
 // "transform".
 void draw_transforms(json& scene, std::uint64_t seed);
+// RandomSceneOptions::mesh_files (random_mesh_files.cpp): meshes moved into OBJ files.
+std::vector<std::pair<std::string, std::string>> draw_mesh_files(json& scene, std::uint64_t seed);
 
 }  // namespace refract::validation::random_detail

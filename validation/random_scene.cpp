@@ -26,7 +26,8 @@ struct Mat {
 
 class Generator {
 public:
-    Generator(std::uint64_t seed, const RandomSceneOptions& opt) : rng_(seed), opt_(opt), seed_(seed) {}
+    Generator(std::uint64_t seed, const RandomSceneOptions& opt)
+        : rng_(seed), area_rng_(seed ^ 0x617265616c696768ULL), opt_(opt), seed_(seed) {}
     json run();
 
 private:
@@ -44,12 +45,15 @@ private:
     bool outside_plane(const Vec3& n, double d) const;
     void planes();
     void lights();
+    json area_light(const Vec3& p, const Vec3& colour);
     void highlights(int count);
     void enclosure();
     void render();
     Box solids_box() const;
 
     Rand rng_;
+    Rand area_rng_;  // RandomSceneOptions::area_lights: a stream of its own ("arealigh")
+    int area_lights_ = 0;
     RandomSceneOptions opt_;
     std::uint64_t seed_;
     json scene_ = json::object();
@@ -348,10 +352,40 @@ void Generator::lights() {
         const double k = dim ? rng_.uniform(0.05, 0.3) : rng_.uniform(0.4, 1);
         const Vec3 tint = rng_.chance(0.6) ? Vec3(1, 1, 1) : rng_.box(0.4, 1);
         const Vec3 colour = dec3(k * tint, 3).cwiseMax(0.001);
-        ls.push_back({{"type", "point"}, {"position", arr(p)}, {"color", arr(colour)}});
+        json l = opt_.area_lights ? area_light(p, colour) : json();
+        ls.push_back(l.is_null() ? json{{"type", "point"}, {"position", arr(p)}, {"color", arr(colour)}} : l);
         light_positions_.push_back(p);
     }
     scene_["lights"] = ls;
+}
+
+// A point light at p made, half of the time, a 2 × 2 rectangle or disk area light about p
+// (POV-Ray's grid without jitter, which refract's POV-Ray mode matches exactly at 2 × 2),
+// its extent shrunk until its grid's square clears every solid and plane; null: stays a point.
+json Generator::area_light(const Vec3& p, const Vec3& colour) {
+    if (!area_rng_.chance(0.5)) return json();
+    const Mat3 R = area_rng_.rotation();
+    const bool disk = area_rng_.chance(0.5);
+    double extent = area_rng_.uniform(0.2, 1.5);
+    for (int attempt = 0; attempt < 4; ++attempt, extent *= 0.5) {
+        const double e = sig(extent, 3);
+        const Vec3 u = sig3(e * R.col(0)), v = sig3(e * R.col(1));
+        bool ok = true;
+        for (const double a : {-0.5, 0.5})
+            for (const double b : {-0.5, 0.5}) {
+                const Vec3 q = p + a * u + b * v;
+                ok = ok && above(planes_, q);
+                for (const Solid& s : solids_) ok = ok && !reaches(s, q, 0.05);
+            }
+        if (!ok) continue;
+        ++area_lights_;
+        if (disk)
+            return {{"type", "disk"}, {"position", arr(p)}, {"normal", arr(sig3(R.col(2)))}, {"radius", sig(0.5 * e, 3)},
+                    {"size", {2, 2}}, {"color", arr(colour)}};
+        return {{"type", "rectangle"}, {"position", arr(p)}, {"axis1", arr(u)}, {"axis2", arr(v)}, {"size", {2, 2}},
+                {"color", arr(colour)}};
+    }
+    return json();
 }
 
 void Generator::highlights(int count) {
@@ -497,7 +531,9 @@ json Generator::run() {
     std::string desc = "random seed " + std::to_string(seed_) + ": ";
     for (size_t i = 0; i < parts_.size(); ++i) desc += (i ? ", " : "") + parts_[i];
     const size_t nl = light_positions_.size();
-    desc += "; " + std::to_string(nl) + (nl == 1 ? " light; " : " lights; ") + camera_desc_ + "; " + background + "; " +
+    desc += "; " + std::to_string(nl) + (nl == 1 ? " light; " : " lights; ");
+    if (area_lights_ > 0) desc += std::to_string(area_lights_) + " of them area lights; ";
+    desc += camera_desc_ + "; " + background + "; " +
             render_desc_;
     scene_["description"] = desc;
     return scene_;
@@ -514,6 +550,13 @@ nlohmann::json random_scene(std::uint64_t seed, const RandomSceneOptions& opt) {
     nlohmann::json scene = random_detail::Generator(seed, opt).run();
     if (opt.transforms) random_detail::draw_transforms(scene, seed);
     return scene;
+}
+
+RandomSceneFiles random_scene_files(std::uint64_t seed, const RandomSceneOptions& opt) {
+    RandomSceneFiles r;
+    r.scene = random_scene(seed, opt);
+    if (opt.mesh_files) r.files = random_detail::draw_mesh_files(r.scene, seed);
+    return r;
 }
 
 }  // namespace refract::validation

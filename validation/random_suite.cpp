@@ -172,7 +172,7 @@ std::vector<json> shrink_candidates(const json& s) {
 }  // namespace
 
 ShrinkResult shrink_failure(const json& scene, const Comparison& failing, const Targets& targets,
-                            const PovrayOptions& povray, int threads, int max_attempts) {
+                            const PovrayOptions& povray, int threads, int max_attempts, const std::string& name) {
     ShrinkResult r{scene, failing, 0, 0};
     bool progress = true;
     while (progress && r.attempts < max_attempts) {
@@ -180,7 +180,7 @@ ShrinkResult shrink_failure(const json& scene, const Comparison& failing, const 
         for (json& cand : shrink_candidates(r.scene)) {
             if (r.attempts >= max_attempts) break;
             ++r.attempts;
-            Comparison c = compare_with_povray(cand, "shrink", targets, povray, threads);
+            Comparison c = compare_with_povray(cand, name, targets, povray, threads);
             if (c.outcome != Comparison::Outcome::Fail) continue;
             r.scene = std::move(cand);
             r.comparison = std::move(c);
@@ -204,27 +204,46 @@ RandomCase run_one(std::uint64_t seed, const RandomOptions& opt) {
     const auto t0 = std::chrono::steady_clock::now();
     RandomCase rc;
     rc.seed = seed;
-    const json scene = random_scene(seed, opt.scene);
+    const RandomSceneFiles sf = random_scene_files(seed, opt.scene);
+    const json& scene = sf.scene;
     rc.description = scene.value("description", "");
-    const std::string name = "random-" + std::to_string(seed);
+    const fs::path dir = fs::path(opt.out_dir) / ("seed-" + std::to_string(seed));
+    // The case's directory: made for a failure, or first for a scene that names files
+    // (written beside its scene.json, removed again when the case passes or is skipped).
+    std::error_code ec;
+    std::unique_ptr<TreeOnSignal> partial;  // removed on SIGINT/SIGTERM while this run writes it
+    bool made = false;
+    const auto make_dir = [&] {
+        if (!rc.dir.empty()) return;
+        if (!fs::exists(fs::symlink_status(dir, ec))) {
+            partial = std::make_unique<TreeOnSignal>(dir.c_str());
+            made = true;
+        }
+        fs::create_directories(dir);
+        rc.dir = dir.string();
+        write_text_file((dir / "scene.json").string(), scene.dump(2) + "\n");
+    };
+    std::string name = "random-" + std::to_string(seed);
+    if (!sf.files.empty()) {
+        make_dir();
+        for (const auto& [file, text] : sf.files) write_text_file((dir / file).string(), text);
+        name = (dir / "scene.json").string();
+    }
     const Comparison c = compare_with_povray(scene, name, opt.targets, opt.povray, 1);
     rc.outcome = c.outcome;
     rc.reason = c.reason;
     rc.diff = c.diff;
     rc.knife_edge_pixels = c.knife_edge_pixels;
     rc.diff_outside_knife_edges = c.diff_outside_knife_edges;
+    if (c.outcome != Comparison::Outcome::Fail && !rc.dir.empty() && made) {
+        fs::remove_all(dir, ec);
+        rc.dir.clear();
+    }
     if (c.outcome == Comparison::Outcome::Fail) {
-        const fs::path dir = fs::path(opt.out_dir) / ("seed-" + std::to_string(seed));
-        // Removed on SIGINT/SIGTERM while it is being written, when this run makes it.
-        std::error_code ec;
-        std::unique_ptr<TreeOnSignal> partial;
-        if (!fs::exists(fs::symlink_status(dir, ec))) partial = std::make_unique<TreeOnSignal>(dir.c_str());
-        fs::create_directories(dir);
-        rc.dir = dir.string();
-        write_text_file((dir / "scene.json").string(), scene.dump(2) + "\n");
+        make_dir();
         write_failure_images(dir, "", c);
         if (opt.shrink) {
-            ShrinkResult s = shrink_failure(scene, c, opt.targets, opt.povray, 1, opt.max_shrink_attempts);
+            ShrinkResult s = shrink_failure(scene, c, opt.targets, opt.povray, 1, opt.max_shrink_attempts, name);
             json minimal = s.scene;
             minimal["description"] = "minimal failing case shrunk from random seed " + std::to_string(seed) + " (" +
                                      std::to_string(s.accepted) + " reductions)";

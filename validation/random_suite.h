@@ -49,7 +49,8 @@ struct ShrinkResult {
 // a lower resolution, and keeps the first candidate that still fails; it stops when none
 // does or after `max_attempts` candidates.
 ShrinkResult shrink_failure(const nlohmann::json& scene, const Comparison& failing, const Targets& targets,
-                            const PovrayOptions& povray, int threads, int max_attempts = 80);
+                            const PovrayOptions& povray, int threads, int max_attempts = 80,
+                            const std::string& name = "shrink");  // the scene file's name: files it names are beside it
 
 struct RandomOptions {
     int count = 10;                // scenes
