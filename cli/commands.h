@@ -35,4 +35,8 @@ inline void add_max_memory(CLI::App* sub, std::uint64_t& bytes) {
 // True when stderr is a terminal (progress bars only then).
 bool stderr_is_terminal();
 
+// Records the chosen subcommand and the options given (core/provenance.h: set_run_settings),
+// for the sidecar of every CSV the command writes; main() calls it once parsing is complete.
+void record_settings(const CLI::App& app);
+
 }  // namespace refract::cli

@@ -8,6 +8,7 @@
 #include <refract/core/integrators/integrator.h>
 #include <refract/core/polarisation_output.h>
 #include <refract/core/render.h>
+#include <refract/core/render_metadata.h>
 #include <refract/core/scene_json.h>
 #include <refract/core/tracer.h>
 
@@ -33,9 +34,14 @@ std::string sidecar(const std::string& output, const std::string& suffix) {
 }
 
 // Writes the image and its sidecars, appending each path to `done` once it is written.
-void write_outputs(const RenderArgs& args, const refract::RenderResult& result, std::vector<std::string>& done) {
+void write_outputs(const RenderArgs& args, const refract::Scene& scene, const refract::RenderResult& result,
+                   std::vector<std::string>& done) {
     const int w = result.image.width, h = result.image.height;
-    refract::write_image(args.output, result.image, {args.linear16, result.signed_colours});
+    refract::WriteOptions wo;
+    wo.linear16 = args.linear16;
+    wo.signed_values = result.signed_colours;
+    wo.attributes = refract::render_attributes(scene, args.scene);  // .exr: what made it, its chromaticities
+    refract::write_image(args.output, result.image, wo);
     done.push_back(args.output);
     if (result.polarisation)
         for (const auto& p : refract::write_polarisation(args.output, w, h, *result.polarisation, result.signed_colours)) done.push_back(p);
@@ -108,7 +114,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         // A write refused after the first (a disk full) removes what this run wrote.
         std::vector<std::string> done;
         try {
-            write_outputs(*args, result, done);
+            write_outputs(*args, scene, result, done);
         } catch (const refract::InputError&) {
             std::error_code ec;
             for (const auto& p : done) std::filesystem::remove(p, ec);
