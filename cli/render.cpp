@@ -1,4 +1,5 @@
 // refract render SCENE.json -o IMAGE [--threads N] [--stats]
+#include <cctype>
 #include <filesystem>
 #include <optional>
 #include <iostream>
@@ -33,15 +34,25 @@ std::string sidecar(const std::string& output, const std::string& suffix) {
     return (p.parent_path() / p.stem()).string() + suffix;
 }
 
+bool is_exr(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr";
+}
+
 // Writes the image and its sidecars, appending each path to `done` once it is written.
 void write_outputs(const RenderArgs& args, const refract::Scene& scene, const refract::RenderResult& result,
                    std::vector<std::string>& done) {
     const int w = result.image.width, h = result.image.height;
-    refract::WriteOptions wo;
-    wo.linear16 = args.linear16;
-    wo.signed_values = result.signed_colours;
-    wo.attributes = refract::render_attributes(scene, args.scene);  // .exr: what made it, its chromaticities
-    refract::write_image(args.output, result.image, wo);
+    if (is_exr(args.output)) {
+        // The same float RGB write_image stores, with a header saying what made it and
+        // its chromaticities (core/render_metadata.h).
+        const std::vector<std::string> rgb{"R", "G", "B"};
+        refract::write_channels(args.output, w, h, rgb, result.image.rgb, refract::render_attributes(scene, args.scene),
+                                result.signed_colours ? rgb : std::vector<std::string>{});
+    } else {
+        refract::write_image(args.output, result.image, {args.linear16, result.signed_colours});
+    }
     done.push_back(args.output);
     if (result.polarisation)
         for (const auto& p : refract::write_polarisation(args.output, w, h, *result.polarisation, result.signed_colours)) done.push_back(p);

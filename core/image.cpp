@@ -89,8 +89,7 @@ void write_image(const std::string& path, const Image& img, const WriteOptions& 
         check_written(path, img.width, names, std::vector<bool>(3, opt.signed_values), img.rgb, true);
         std::vector<float> buf(n);
         for (size_t k = 0; k < n; ++k) buf[k] = static_cast<float>(img.rgb[k]);
-        write_atomically(path, img.width, img.height, 3, PixelType::float32, buf.data(), {}, {},
-                         ext == ".exr" ? opt.attributes : std::vector<std::pair<std::string, std::string>>{});
+        write_atomically(path, img.width, img.height, 3, PixelType::float32, buf.data());
         return;
     }
     // The integer formats clamp to [0, 1] (negative values are written as 0): only a value

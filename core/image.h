@@ -32,9 +32,6 @@ struct WriteOptions {
     bool linear16 = false;  // .png only: 16-bit linear instead of 8-bit sRGB
     // The values may be negative (the xyz-srgb pipeline's colours out of the sRGB gamut).
     bool signed_values = false;
-    // .exr only: header attributes (name, value), strings, but "chromaticities": 8
-    // numbers as text, stored as OpenEXR's float[8] (core/image_io/).
-    std::vector<std::pair<std::string, std::string>> attributes{};
 };
 
 // Writes to a temporary name beside `path`, then renames: never a half-written file.
