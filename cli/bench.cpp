@@ -12,7 +12,10 @@
 
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
+#include <unistd.h>
+
 #include "cli/commands.h"
+#include <refract/core/progress.h>
 #include <refract/core/threads.h>
 #include <refract/core/render.h>
 #include <refract/core/tracer.h>
@@ -302,6 +305,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
+        // The elapsed time on stderr, when it is a terminal and the results (stdout) go elsewhere:
+        // on one terminal the result lines themselves show the progress.
+        Progress progress("bench", "", 0, cli::stderr_is_terminal() && isatty(STDOUT_FILENO) == 0);
         a->threads = worker_threads(a->threads);
         if (a->kernels || a->meshes || a->objects || a->sweep || a->mesh_file || !a->rtiow.empty()) {
             if (a->mesh_file) cli::bench::mesh_file();

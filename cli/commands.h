@@ -39,4 +39,8 @@ std::string printable(const std::string& text);
 // True when stderr is a terminal (progress bars only then).
 bool stderr_is_terminal();
 
+// Records the chosen subcommand and the options given (core/provenance.h: set_run_settings),
+// for the sidecar of every CSV the command writes; main() calls it once parsing is complete.
+void record_settings(const CLI::App& app);
+
 }  // namespace refract::cli

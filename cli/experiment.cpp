@@ -1,9 +1,10 @@
-// refract experiment NAME -o DIR
+// refract experiment NAME -o DIR (required: no default directory)
 #include <chrono>
 #include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
+#include <refract/core/progress.h>
 #include <refract/experiments/common.h>
 #include <refract/experiments/experiment.h>
 #include <refract/experiments/plot.h>
@@ -23,7 +24,7 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
     std::string help = "Run one experiment driver: CSV, figures and summary.md into DIR";
     auto* sub = app.add_subcommand("experiment", help);
     sub->add_option("name", a->name, "Experiment name (--list shows them)");
-    sub->add_option("-o,--output", a->out, "Output directory");
+    sub->add_option("-o,--output", a->out, "REQUIRED to run one: output directory (none is assumed)");
     sub->add_option("--threads", a->threads, "Worker threads (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quick", a->quick, "Smaller images and fewer samples (smoke runs)");
     sub->add_flag("--list", a->list, "List the experiments");
@@ -34,10 +35,12 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
             return;
         }
         const auto& e = ex::find(a->name);
-        if (a->out.empty()) a->out = "out/" + e.name;
+        // No default directory: a run never writes where it was not told to.
+        if (a->out.empty()) throw refract::InputError("experiment " + e.name + ": -o DIR (output directory) is required");
         const bool created = ex::ensure_dir(a->out);  // before the work: a bad -o is bad input
         const auto t0 = std::chrono::steady_clock::now();
         try {
+            refract::Progress progress("experiment " + e.name, "", 0, refract::cli::stderr_is_terminal());
             e.run({a->out, a->threads, a->quick});
         } catch (const refract::InputError&) {
             std::error_code ec;

@@ -41,19 +41,21 @@ void run(const FarFieldArgs* a, const refract::Scene& scene, const refract::expe
     s.max_memory = a->max_memory;
     s.wavelengths = a->wavelengths;
     s.trace.packets = !a->no_lanes;
+    s.progress = refract::cli::stderr_is_terminal();
     const FarFieldResult r = far_field(scene, s, a->threads);
     const auto written = experiments::write_far_field(a->output, experiments::far_field_tables(r), "far field of " + a->scene, files);
     std::cout << "far field: " << r.photons << " photons, " << r.segments << " segments, " << r.wavelengths.size()
               << " wavelength(s), " << experiments::fmt(r.seconds, 3) << " s\n";
     for (size_t w = 0; w < r.wavelengths.size(); ++w) {
-        double scattered = 0;
-        for (int c = 0; c < r.classes; ++c)
-            for (int b = 0; b < r.bins; ++b) scattered += r.at(static_cast<int>(w), c, 0, b);
+        const int k = static_cast<int>(w);
+        // Absorbed: inside the objects (Beer–Lambert, the rest of the balance) and where a
+        // path ends on a diffuse surface or an emitter.
         if (w == 0 || w + 1 == r.wavelengths.size())
-            std::cout << "  " << experiments::fmt(r.wavelengths[w]) << " nm: scattered " << experiments::fmt(scattered, 6)
+            std::cout << "  " << experiments::fmt(r.wavelengths[w]) << " nm: scattered " << experiments::fmt(r.scattered(k), 6)
                       << ", unscattered " << experiments::fmt(r.unscattered[w], 6) << ", absorbed "
-                      << experiments::fmt(r.absorbed[w], 6) << ", dropped by the limits "
-                      << experiments::fmt(r.dropped[w], 6) << "\n";
+                      << experiments::fmt(r.absorbed_inside(k) + r.absorbed[w], 6) << " (inside the objects "
+                      << experiments::fmt(r.absorbed_inside(k), 6) << ", on surfaces " << experiments::fmt(r.absorbed[w], 6)
+                      << "), dropped by the limits " << experiments::fmt(r.dropped[w], 6) << "\n";
     }
     for (const auto& f : written) std::cout << "  " << a->output << "/" << f << "\n";
 }

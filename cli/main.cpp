@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/suggest.h"
+#include <refract/core/provenance.h>
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 
@@ -51,6 +52,7 @@ std::string printable(const std::string& text) {
 
 int main(int argc, char** argv) {
     refract::install_temp_cleanup();  // Ctrl-C or a kill leaves no temporary behind
+    refract::set_command_line(argc, argv);  // written into the outputs (core/provenance.h)
     CLI::App app{"refract: a research toolkit for the physics of refraction in rendering"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("refract ") + REFRACT_VERSION);
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
     std::sort(entries.begin(), entries.end(),
               [](const auto& a, const auto& b) { return a.order < b.order; });
     for (const auto& e : entries) e.add(app);
+    app.parse_complete_callback([&app] { refract::cli::record_settings(app); });  // before the command runs
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

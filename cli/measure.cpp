@@ -6,7 +6,10 @@
 #include <memory>
 #include <sstream>
 
+#include <filesystem>
+
 #include "cli/commands.h"
+#include <refract/core/provenance.h>
 #include <refract/core/image.h>
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
@@ -23,6 +26,18 @@ struct MeasureArgs {
     bool angles = false;
     int bins = 32;
 };
+
+// The CSV and its settings beside it, OUT.json (core/provenance.h); neither without the other.
+void write_csv_with_sidecar(const std::string& out, const std::string& csv) {
+    refract::validation::write_text_file(out, csv);
+    try {
+        refract::write_csv_sidecar(out);
+    } catch (...) {
+        std::error_code ec;
+        std::filesystem::remove(out, ec);
+        throw;
+    }
+}
 
 std::string csv_number(double v) { return refract::format_significant(v, 10); }
 
@@ -119,7 +134,7 @@ refract::cli::Registrar reg{55, [](CLI::App& app) {
                 csv << "\n";
             }
             if (a->output.empty()) std::cout << csv.str();
-            else validation::write_text_file(a->output, csv.str());
+            else write_csv_with_sidecar(a->output, csv.str());
             return;
         }
         const Image img = read_image(a->image);
@@ -130,7 +145,7 @@ refract::cli::Registrar reg{55, [](CLI::App& app) {
             throw InputError(a->image + ": " + e.what());  // name the image measured
         }
         if (a->output.empty()) std::cout << csv;
-        else validation::write_text_file(a->output, csv);
+        else write_csv_with_sidecar(a->output, csv);
     });
 }};
 

@@ -1,4 +1,5 @@
 // refract render SCENE.json -o IMAGE [--threads N] [--stats]
+#include <cctype>
 #include <filesystem>
 #include <optional>
 #include <iostream>
@@ -8,6 +9,7 @@
 #include <refract/core/integrators/integrator.h>
 #include <refract/core/polarisation_output.h>
 #include <refract/core/render.h>
+#include <refract/core/render_metadata.h>
 #include <refract/core/scene_json.h>
 #include <refract/core/tracer.h>
 
@@ -32,10 +34,25 @@ std::string sidecar(const std::string& output, const std::string& suffix) {
     return (p.parent_path() / p.stem()).string() + suffix;
 }
 
+bool is_exr(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr";
+}
+
 // Writes the image and its sidecars, appending each path to `done` once it is written.
-void write_outputs(const RenderArgs& args, const refract::RenderResult& result, std::vector<std::string>& done) {
+void write_outputs(const RenderArgs& args, const refract::Scene& scene, const refract::RenderResult& result,
+                   std::vector<std::string>& done) {
     const int w = result.image.width, h = result.image.height;
-    refract::write_image(args.output, result.image, {args.linear16, result.signed_colours});
+    if (is_exr(args.output)) {
+        // The same float RGB write_image stores, with a header saying what made it and
+        // its chromaticities (core/render_metadata.h).
+        const std::vector<std::string> rgb{"R", "G", "B"};
+        refract::write_channels(args.output, w, h, rgb, result.image.rgb, refract::render_attributes(scene, args.scene),
+                                result.signed_colours ? rgb : std::vector<std::string>{});
+    } else {
+        refract::write_image(args.output, result.image, {args.linear16, result.signed_colours});
+    }
     done.push_back(args.output);
     if (result.polarisation)
         for (const auto& p : refract::write_polarisation(args.output, w, h, *result.polarisation, result.signed_colours)) done.push_back(p);
@@ -108,7 +125,7 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
         // A write refused after the first (a disk full) removes what this run wrote.
         std::vector<std::string> done;
         try {
-            write_outputs(*args, result, done);
+            write_outputs(*args, scene, result, done);
         } catch (const refract::InputError&) {
             std::error_code ec;
             for (const auto& p : done) std::filesystem::remove(p, ec);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include <refract/core/progress.h>
 #include <refract/experiments/experiment.h>
 #include <refract/experiments/plot.h>
 #include <refract/geometry/error.h>
@@ -137,16 +138,20 @@ refract::cli::Registrar reg{90, [](CLI::App& app) {
         if (ec || !fs::is_directory(out))
             throw refract::InputError(a->out + ": cannot create the output directory");
         std::vector<Section> sections;
+        refract::Progress progress("reproduce", "experiments", static_cast<std::int64_t>(ex::all().size()),
+                                   refract::cli::stderr_is_terminal());
         for (const auto& e : ex::all()) {
             const auto t0 = std::chrono::steady_clock::now();
-            std::cerr << "experiment " << e.name << " ..." << std::endl;
+            progress.message("experiment " + e.name + " ...");
             const std::string dir = (out / e.name).string();
             fs::create_directories(dir, ec);
             e.run({dir, a->threads, a->quick});
             const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::cerr << "experiment " << e.name << ": done in " << ex::fmt(s, 3) << " s" << std::endl;
+            progress.message("experiment " + e.name + ": done in " + ex::fmt(s, 3) + " s");
+            progress.add(1);
             sections.push_back({e.name, e.description, e.name, "", false});
         }
+        progress.finish();
         int failed = 0;
         Section val{"validation", "Cross-renderer validation: refract (POV-Ray compatible mode) against POV-Ray 3.7, "
                                   "physical mode against analytic references",

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/sweep_mpi.h"
+#include <refract/core/progress.h>
 #include <refract/experiments/gem_metrics.h>
 #include <refract/experiments/gem_sweep_file.h>
 #include <refract/core/spectrum/dispersion.h>
@@ -32,7 +33,7 @@ sw::Sweep make_sweep(const Args& a) {
     for (size_t k = 0; k < a.ranges.size(); ++k)
         if (!a.ranges[k].empty()) sw::set_axis(s.grid, sw::parse_axis(sw::parameter_names()[k], a.ranges[k]));
     if (a.polarisation != "exact" && a.polarisation != "natural")
-        throw refract::InputError("--polarisation '" + a.polarisation + "': expected exact or natural");
+        throw refract::InputError("--polarisation-model '" + a.polarisation + "': expected exact or natural");
     try {
         refract::spectrum::catalogue(a.material);  // before any cut: an unknown name is bad input
     } catch (const refract::InputError& e) {
@@ -146,11 +147,12 @@ void run(const Args& a) {
         }
         return;
     }
-    const bool bar = !a.quiet && refract::cli::stderr_is_terminal();
+    refract::Progress progress("sweep", "cuts", s.grid.size(), !a.quiet && refract::cli::stderr_is_terminal());
     const auto st = sw::run_to_file(s, a.output, a.threads, [&](std::int64_t done, std::int64_t total) {
-        if (bar) std::cerr << "\rsweep: " << done << " / " << total << " cuts" << std::flush;
+        progress.set_total(total);
+        progress.set(done);
     });
-    if (bar) std::cerr << "\n";
+    progress.finish();
     report(s, a.output, st.resumed, st.computed, st.impossible, 1);
 }
 
@@ -172,7 +174,18 @@ refract::cli::Registrar reg{35, [](CLI::App& app) {
     sub->add_option("--material", a->material, "Material (catalogue name, core/spectrum/dispersion.h)");
     sub->add_option("--rays", a->rays, "Eye rays per metric")->check(CLI::Range(16, 1 << 26));  // gem_metrics::validate: from 16
     sub->add_option("--wavelengths", a->wavelengths, "Spectral bands, 400..700 nm")->check(CLI::Range(1, 301));
-    sub->add_option("--polarisation", a->polarisation, "exact (Stokes-Mueller) or natural");
+    auto* model = sub->add_option("--polarisation-model", a->polarisation, "exact (Stokes-Mueller) or natural (exact)");
+    // The old spelling (before --polarisation meant a light state, as in trace): still
+    // accepted, with one line saying so; not listed in --help.
+    sub->add_option_function<std::string>(
+           "--polarisation",
+           [a](const std::string& v) {
+               a->polarisation = v;
+               std::cerr << "refract sweep: --polarisation is deprecated here (in trace it is a light state); "
+                            "use --polarisation-model\n";
+           })
+        ->group("")
+        ->excludes(model);
     sub->add_option("--seed", a->seed, "Base seed (each cut's seed derives from it and the cut's parameters)")
         ->check(CLI::NonNegativeNumber);
     sub->add_option("--threads", a->threads, "Worker threads per process (0: all cores)")->check(refract::cli::thread_range());

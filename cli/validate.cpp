@@ -36,7 +36,7 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     sub->add_option("cases", args->cases, "Cases to run (default: all in the scenes directory)");
     sub->add_option("-o,--output", args->out_dir, "Report directory (report.md, report.html, images)");
     sub->add_option("--scenes", args->scenes, "Directory of NAME.json scenes and NAME.tol.json tolerances");
-    sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores for refract, 2 for POV-Ray)")
+    sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores)")
         ->check(refract::cli::thread_range());
     sub->add_option("--povray", args->povray, "POV-Ray executable (name on PATH or path)");
     sub->add_flag("--list", args->list, "List the cases and exit");
@@ -79,7 +79,7 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
             v::CausticOptions co;
             co.threads = args->threads;
             co.povray.executable = args->povray;
-            if (args->threads > 0) co.povray.threads = args->threads;
+            co.povray.threads = refract::worker_threads(args->threads);  // 0: all cores, as everywhere
             v::SuiteResult r;
             try {
                 r.cases.push_back(v::run_caustics(co));
@@ -143,6 +143,7 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
         opt.cases = args->cases;
         opt.threads = args->threads;
         opt.povray.executable = args->povray;
+        opt.povray.threads = refract::worker_threads(args->threads);  // 0: all cores, as everywhere
         const v::SuiteResult r = v::run_suite(opt, &std::cerr);
         std::cout << v::format_table(r);
         std::cout << "reports: " << args->out_dir << "/report.md, " << args->out_dir << "/report.html" << std::endl;

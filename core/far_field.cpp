@@ -17,6 +17,7 @@
 #include <refract/core/ray_tree.h>
 #include <refract/geometry/error.h>
 #include <refract/core/memory.h>
+#include <refract/core/progress.h>
 #include <refract/core/threads.h>
 
 namespace refract {
@@ -190,6 +191,22 @@ bool spectral_scene(const Scene& scene) {
 
 }  // namespace
 
+double FarFieldResult::scattered(int w) const {
+    double s = 0;
+    for (int c = 0; c < classes; ++c) {
+        double v = 0;
+        for (int b = 0; b < bins; ++b) v += at(w, c, 0, b);
+        s += v;
+    }
+    return s;
+}
+
+double FarFieldResult::absorbed_inside(int w) const {
+    const size_t k = static_cast<size_t>(w);
+    const double rest = 1.0 - (scattered(w) + unscattered[k] + absorbed[k] + dropped[k]);
+    return std::abs(rest) < 1e-9 ? 0.0 : rest;
+}
+
 double FarFieldResult::solid_angle(int b) const {
     if (settings.binning == FarFieldSettings::Binning::Sphere) return 4.0 * M_PI / bins;
     const double t0 = M_PI * b / bins, t1 = M_PI * (b + 1) / bins;
@@ -299,6 +316,10 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
     // drawn once for its group and its first segment traced once, then walked at each of
     // the group's wavelengths.
     const size_t group = far_field_group(per_wavelength, r.wavelengths.size());
+    std::int64_t work = 0;  // photons × wavelength groups
+    for (const Emitter& em : emitters) work += static_cast<std::int64_t>(em.photons);
+    Progress progress("far field", "photons", work * static_cast<std::int64_t>((r.wavelengths.size() + group - 1) / group),
+                      settings.progress);
     // Powers in units of the emitted power (the lights' spectrum cancels).
     const double scale = kFixedScale / total;
     for (size_t w0 = 0; w0 < r.wavelengths.size(); w0 += group) {
@@ -356,6 +377,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
                     if (exact) run(LightStokes{});
                     else run(NaturalLight{});
                     tally.segments += st.segments;
+                    progress.add(static_cast<std::int64_t>(range.size()));
                 });
             });
         }
@@ -382,6 +404,7 @@ FarFieldResult far_field(const Scene& scene_in, const FarFieldSettings& settings
         }
         r.segments += sum.segments;
     }
+    progress.finish();
     for (const Emitter& em : emitters) r.photons += em.photons * r.wavelengths.size();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;

@@ -49,6 +49,7 @@ struct FarFieldSettings {
     // How rays are searched and walked (natural light: the wavelengths of a photon walked
     // together in packets of kLanes, the same result as one by one to the last bit).
     TraceOptions trace;
+    bool progress = false;  // a progress line on stderr (core/progress.h; callers pass isatty(2))
 };
 
 struct FarFieldResult {
@@ -71,6 +72,11 @@ struct FarFieldResult {
                           static_cast<size_t>(components) + static_cast<size_t>(s)) * static_cast<size_t>(bins) +
                      static_cast<size_t>(b)];
     }
+    // Of the power emitted at wavelength w: what leaves in any bin and class (S0), and the
+    // rest, 1 − scattered − unscattered − absorbed − dropped: the light absorbed inside
+    // the objects (Beer–Lambert), 0 below 1e-9 (the fixed-point tallies' rounding).
+    double scattered(int w) const;
+    double absorbed_inside(int w) const;
     // A bin's solid angle (sr), and its centre: θ (degrees from the axis) and, for the
     // sphere binning, φ (degrees).
     double solid_angle(int b) const;

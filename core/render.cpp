@@ -19,6 +19,7 @@
 #include <refract/core/integrators/spectral.h>
 #include <refract/core/light_pass.h>
 #include <refract/core/memory.h>
+#include <refract/core/progress.h>
 #include <refract/core/tracer.h>
 #include <refract/geometry/error.h>
 #include <refract/core/threads.h>
@@ -158,9 +159,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     constexpr int kTile = 16;
     const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
     std::vector<RenderStats> tile_stats(static_cast<size_t>(tiles_x) * tiles_y);
-    std::atomic<int> done{0};
-    std::mutex print;
     const int total = tiles_x * tiles_y;
+    Progress progress("render", "tiles", total, opt.progress);
     auto body = [&](const tbb::blocked_range2d<int>& r) {
         for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty)
             for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
@@ -198,22 +198,13 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                         }
                         tile.merge(st);
                     }
-                const int d = ++done;
-                if (opt.progress) {
-                    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                    if (el > 1.0 && (d % std::max(1, total / 100) == 0 || d == total)) {
-                        std::lock_guard<std::mutex> lock(print);
-                        const int width = 40, fill = width * d / total;
-                        std::fprintf(stderr, "\r[%s%s] %3d%% %.1fs", std::string(fill, '#').c_str(),
-                                     std::string(width - fill, ' ').c_str(), 100 * d / total, el);
-                        if (d == total) std::fprintf(stderr, "\n");
-                    }
-                }
+                progress.add(1);
             }
     };
     if (cancelled()) throw RenderCancelled();
     tbb::task_arena arena(threads);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), body); });
+    progress.finish();
     if (cancelled()) throw RenderCancelled();
     for (const auto& st : tile_stats) result.stats.merge(st);
     result.stats.merge(light_stats);

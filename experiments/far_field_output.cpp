@@ -88,7 +88,7 @@ FarFieldTables far_field_tables(const FarFieldResult& r) {
     Csv& sum = t.balance;
     sum.header = {"wavelength_nm"};
     for (int c = 0; c < r.classes; ++c) sum.header.push_back("class" + std::to_string(c));
-    for (const char* h : {"scattered", "unscattered", "absorbed", "dropped", "sum"}) sum.header.push_back(h);
+    for (const char* h : {"scattered", "unscattered", "absorbed", "dropped", "sum", "absorbed_inside"}) sum.header.push_back(h);
     for (int w = 0; w < nw; ++w) {
         std::vector<std::string> row{fmt(r.wavelengths[static_cast<size_t>(w)])};
         double scattered = 0;
@@ -100,7 +100,7 @@ FarFieldTables far_field_tables(const FarFieldResult& r) {
         }
         const size_t k = static_cast<size_t>(w);
         for (double v : {scattered, r.unscattered[k], r.absorbed[k], r.dropped[k],
-                         scattered + r.unscattered[k] + r.absorbed[k] + r.dropped[k]})
+                         scattered + r.unscattered[k] + r.absorbed[k] + r.dropped[k], r.absorbed_inside(w)})
             row.push_back(fmt(v, 12));
         sum.add(std::move(row));
     }
@@ -169,9 +169,11 @@ FarFieldTables far_field_tables(const FarFieldResult& r) {
 }
 
 void check_far_field_outputs(const std::string& dir, const FarFieldFiles& opt) {
-    std::vector<std::string> names{"far_field.csv", "far_field_summary.csv", "far_field.exr"};
+    std::vector<std::string> names{"far_field.csv", "far_field.csv.json", "far_field_summary.csv",
+                                   "far_field_summary.csv.json", "far_field.exr"};
     if (opt.plot)
-        for (const char* n : {"far_field_plot.csv", "far_field.gp", "far_field.png", "far_field.pdf"}) names.push_back(n);
+        for (const char* n : {"far_field_plot.csv", "far_field_plot.csv.json", "far_field.gp", "far_field.png", "far_field.pdf"})
+            names.push_back(n);
     std::error_code ec;
     for (const auto& n : names)
         if (std::filesystem::is_directory(std::filesystem::path(dir) / n, ec))
@@ -184,8 +186,10 @@ std::vector<std::string> write_far_field(const std::string& dir, const FarFieldT
     std::vector<std::string> written;
     write_csv(dir + "/far_field.csv", t.profile);
     written.push_back("far_field.csv");
+    written.push_back("far_field.csv.json");  // its settings (write_csv, core/provenance.h)
     write_csv(dir + "/far_field_summary.csv", t.balance);
     written.push_back("far_field_summary.csv");
+    written.push_back("far_field_summary.csv.json");
     // The colour (xyz-srgb, out of the sRGB gamut) and S1–S3 may be negative.
     write_channels(dir + "/far_field.exr", t.map_width, t.map_height, t.channels, t.map, t.attributes,
                    {"R", "G", "B", "S1", "S2", "S3"});

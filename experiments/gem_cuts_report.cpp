@@ -2,6 +2,9 @@
 #include <cmath>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include <refract/core/provenance.h>
 #include <refract/experiments/common.h>
 #include <refract/experiments/gem_cuts.h>
 #include <refract/experiments/gem_sweep_file.h>
@@ -74,7 +77,9 @@ std::string marks_text(const Result& r) {
 void write(const Result& r, const std::string& dir) {
     ensure_dir(dir);
     write_text_atomic(dir + "/gem_cuts_sweep.csv", csv_of(r.main_rows));
+    write_csv_sidecar(dir + "/gem_cuts_sweep.csv", gem_sweep::settings_json(r.main));  // core/provenance.h
     write_text_atomic(dir + "/gem_cuts_star_lower_half.csv", csv_of(r.detail_rows));
+    write_csv_sidecar(dir + "/gem_cuts_star_lower_half.csv", gem_sweep::settings_json(r.detail));
     write_text_atomic(dir + "/gem_cuts_map.dat", map_text(r));
     std::ostringstream marks;
     for (const auto& [name, row] : r.presets)

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include <refract/core/provenance.h>
 #include <refract/core/random.h>
 #include <refract/experiments/common.h>
 #include <refract/experiments/field_csv.h>
@@ -232,7 +233,10 @@ void write(const Result& r, const std::string& dir) {
 
     // Line drawings.
     for (const auto& pr : r.presets)
+    {
         write_text_atomic(dir + "/gem_outline_" + pr.preset + ".csv", outline_text(pr));
+        write_csv_sidecar(dir + "/gem_outline_" + pr.preset + ".csv");  // core/provenance.h
+    }
     const FigureSize size{1200, 420 * static_cast<int>(presets.size()) + 40, 9.0,
                           3.1 * static_cast<double>(presets.size()) + 0.3};
     gnuplot_figure(dir, "gem_drawings", drawings_body(presets), size);

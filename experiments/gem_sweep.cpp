@@ -76,16 +76,6 @@ std::uint64_t splitmix(std::uint64_t x) {
     return x ^ (x >> 31);
 }
 
-std::string csv_quote(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (const char c : s) {
-        if (c == '\n') continue;
-        q += c;
-        if (c == '"') q += '"';
-    }
-    return q + "\"";
-}
 
 }  // namespace
 
@@ -197,7 +187,7 @@ void set_axis(Grid& grid, const Axis& axis) {
 }
 
 std::string fingerprint(const Sweep& s) {
-    std::string f = "refract sweep brilliant v1";
+    std::string f = "refract sweep brilliant v2";  // v2: the ASET and balance columns
     for (const Axis& a : s.grid.axes) f += " " + a.name + "=" + a.text();
     const BrilliantCut& b = s.grid.base;
     f += " culet=" + number(b.culet) + " girdle_facets=" + std::to_string(b.girdle_facets) +
@@ -273,32 +263,6 @@ std::string number(double v) {
     char buf[64];
     const auto res = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, res.ptr);
-}
-
-std::string csv_header() {
-    return "index,table,crown_angle,pavilion_angle,star,lower_half,girdle,status,reason,"
-           "measured_table,measured_crown_angle,measured_pavilion_angle,measured_star,measured_lower_half,"
-           "measured_girdle,crown_height,pavilion_depth,total_depth,"
-           "light_return,light_return_error,fire,fire_error,leakage,leakage_error,scintillation,scintillation_error,"
-           "leakage_by_kind";
-}
-
-std::string csv_line(const Row& r) {
-    const BrilliantCut& c = r.cut;
-    std::string s = std::to_string(r.index);
-    for (const double v : {c.table, c.crown_angle, c.pavilion_angle, c.star, c.lower_half, c.girdle}) s += "," + number(v);
-    if (!r.possible) return s + ",impossible," + csv_quote(r.reason) + std::string(18, ',');
-    s += ",ok,";
-    const BrilliantProportions& m = r.measured;
-    for (const double v : {m.table, m.crown_angle, m.pavilion_angle, m.star, m.lower_half, m.girdle, m.crown_height,
-                           m.pavilion_depth, m.total_depth})
-        s += "," + number(v);
-    const auto& g = r.metrics;
-    for (const auto* x : {&g.light_return, &g.fire, &g.leakage, &g.scintillation})
-        s += "," + number(x->value) + "," + number(x->error);
-    std::string kinds;
-    for (const auto& [kind, v] : g.leakage_by_kind) kinds += (kinds.empty() ? "" : ";") + kind + ":" + number(v);
-    return s + "," + csv_quote(kinds);
 }
 
 }  // namespace refract::experiments::gem_sweep

@@ -82,6 +82,18 @@ std::vector<Row> run(const Sweep& sweep, const std::vector<std::int64_t>& indice
                      const std::function<void(const Row&)>& done = {});
 std::vector<std::int64_t> all_indices(const Sweep& sweep);
 
+// The result cells of a row, one list feeding the CSV's header and lines (and any other
+// reader: names as in the header), after index, the six parameters, status and reason:
+// the measured proportions, the four metrics and their errors, leakage_by_kind
+// ("kind:value;..."), the ASET shares (aset_red, _green, _blue, _white) and the energy
+// balance (balance_crown, _girdle, _pavilion, _lost, _missed), GemMetrics' Aset and
+// Balance. An impossible cut leaves them empty.
+struct Field {
+    const char* name;
+    std::string (*cell)(const Row& row);
+};
+const std::vector<Field>& fields();
+
 // The CSV: header, and one line per row (no newline); cells in shortest round-trip form.
 std::string csv_header();
 std::string csv_line(const Row& row);

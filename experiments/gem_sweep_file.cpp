@@ -8,6 +8,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
+#include <refract/core/provenance.h>
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 
@@ -124,12 +127,36 @@ std::string csv_text(const Lines& lines) {
     return s;
 }
 
+nlohmann::json settings_json(const Sweep& s) {
+    nlohmann::json axes = nlohmann::json::object();
+    for (const Axis& a : s.grid.axes) axes[a.name] = a.text();
+    const BrilliantCut& b = s.grid.base;
+    return {{"sweep", "brilliant"},
+            {"axes", axes},
+            {"culet", b.culet},
+            {"girdle_facets", b.girdle_facets},
+            {"bruted_planes", b.bruted_planes},
+            {"material", s.metric.material},
+            {"rays", s.metric.rays},
+            {"wavelengths", s.metric.wavelengths},
+            {"polarisation_model", s.metric.exact_polarisation ? "exact" : "natural"},
+            {"seed", s.metric.seed},
+            {"cuts", s.grid.size()},
+            {"fingerprint", fingerprint(s)}};
+}
+
 void finish(const Sweep& sweep, const std::string& out, const Lines& lines) {
     if (static_cast<std::int64_t>(lines.size()) != sweep.grid.size())
         throw InputError(out + ": the sweep holds " + std::to_string(lines.size()) + " of " +
                          std::to_string(sweep.grid.size()) + " rows; not written");
     write_file_atomic(out, csv_text(lines));
     std::error_code ec;
+    try {
+        write_csv_sidecar(out, settings_json(sweep));  // OUT.json, OUT + ".json": what produced it (core/provenance.h)
+    } catch (...) {
+        fs::remove(out, ec);  // no CSV without its settings; the journal stays to resume
+        throw;
+    }
     fs::remove(journal_path(out), ec);
 }
 

@@ -9,6 +9,8 @@
 #include <map>
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <refract/experiments/gem_sweep.h>
 
 namespace refract::experiments::gem_sweep {
@@ -51,8 +53,12 @@ std::int64_t line_index(const std::string& line);
 // The CSV text: header, then the lines in index order.
 std::string csv_text(const Lines& lines);
 
+// The sweep's settings as JSON (axes, base cut, material, rays, wavelengths, polarisation
+// model, seed, fingerprint): the CSV's sidecar OUT + ".json" (core/provenance.h).
+nlohmann::json settings_json(const Sweep& sweep);
+
 // Writes the CSV atomically once `lines` holds every cut of the sweep (InputError
-// otherwise), then removes the journal.
+// otherwise) and its sidecar OUT + ".json" (settings_json), then removes the journal.
 void finish(const Sweep& sweep, const std::string& out, const Lines& lines);
 
 // Refuses (InputError naming `out`), before any work, an output that cannot be written: a

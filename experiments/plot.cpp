@@ -17,6 +17,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include <refract/core/provenance.h>
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
@@ -87,6 +88,13 @@ void write_csv(const std::string& path, const Csv& table) {
             throw std::logic_error(path + ": a row has " + std::to_string(r.size()) + " cells, the header " +
                                    std::to_string(table.header.size()));
     write_text_atomic(path, table.text());
+    try {
+        write_csv_sidecar(path);  // the run's settings beside it (core/provenance.h)
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(path, ec);  // no CSV without its settings
+        throw;
+    }
 }
 
 Csv read_csv(const std::string& path) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <refract/core/json_reader.h>
+#include <refract/core/provenance.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/geometry/error.h>
@@ -357,6 +358,7 @@ CaseResult run_case_inner(const std::string& name, const SuiteOptions& opt, std:
                 csv << q.x << "," << q.y << "," << q.expected << "," << img_physical.at(q.x, q.y)[0] << ","
                     << img_compat.at(q.x, q.y)[0] << "," << q.value << "\n";
             write_text_file((case_dir / "profile.csv").string(), csv.str());
+            write_csv_sidecar((case_dir / "profile.csv").string(), {{"case", c.name}});  // core/provenance.h
         }
     } catch (const std::exception& e) {
         add_skip(c, std::string("comparison: ") + e.what());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -119,7 +120,17 @@ IoStatus write(int fd, const std::string& file, int width, int height, int nchan
         OIIO::ImageSpec spec(width, height, nchannels, type_of(type));
         if (!names.empty()) spec.channelnames = names;
         if (!colorspace.empty()) spec.attribute("oiio:ColorSpace", colorspace);
-        for (const auto& [name, value] : attributes) spec.attribute(name, value);
+        for (const auto& [name, value] : attributes) {
+            if (name == "chromaticities") {  // OpenEXR's: 8 floats (red, green, blue, white xy), given as text
+                float c[8] = {};
+                if (std::sscanf(value.c_str(), "%f %f %f %f %f %f %f %f", &c[0], &c[1], &c[2], &c[3], &c[4], &c[5],
+                                &c[6], &c[7]) != 8)
+                    return {"chromaticities: expected 8 numbers"};
+                spec.attribute(name, OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), c);
+            } else {
+                spec.attribute(name, value);
+            }
+        }
         FdProxy proxy(fd, file);
         std::unique_ptr<OIIO::ImageOutput> out;
         if (IoStatus s = writer_for(file, proxy, out); !s.ok()) return s;
@@ -149,7 +160,8 @@ IoStatus read(const std::string& path, ImageData& out, std::string (*check)(cons
         if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.data.data()))
             return {reason(in->geterror())};
         for (const auto& p : spec.extra_attribs)
-            if (p.type() == OIIO::TypeDesc::STRING) out.attributes.emplace_back(p.name().string(), p.get_string());
+            if (p.type() == OIIO::TypeDesc::STRING || p.name() == "chromaticities")  // the latter as text
+                out.attributes.emplace_back(p.name().string(), p.get_string());
         return {};
     });
 }
