@@ -11,10 +11,12 @@
 
 #include "cli/commands.h"
 #include <refract/core/progress.h>
+#include "cli/data_dir.h"
 #include <refract/experiments/experiment.h>
 #include <refract/experiments/plot.h>
 #include <refract/geometry/error.h>
 #include <refract/validation/files.h>
+#include <refract/validation/povray_runner.h>
 #include <refract/validation/suite.h>
 
 namespace {
@@ -126,12 +128,27 @@ refract::cli::Registrar reg{90, [](CLI::App& app) {
     sub->add_option("-o,--output", a->out, "Output directory (default: out)");
     sub->add_option("--threads", a->threads, "Worker threads (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quick", a->quick, "Small images and few samples (smoke run)");
-    sub->add_option("--scenes", a->scenes, "Validation scenes directory (default: scenes/validation)");
+    auto* scenes = sub->add_option("--scenes", a->scenes,
+                                   "Validation scenes directory (default: scenes/validation, else the installed "
+                                   "share/refract/scenes/validation)");
     sub->add_flag("--skip-validation", a->skip_validation, "Do not run the validation suite");
-    sub->callback([a] {
+    sub->callback([a, scenes] {
         if (a->threads < 0) throw refract::InputError("reproduce: --threads must be >= 0 (got " +
                                                       std::to_string(a->threads) + ")");
         if (a->out.empty()) throw refract::InputError("reproduce: -o OUT must not be empty");
+        // Validation that cannot run is bad input, refused before any work: its scenes and POV-Ray.
+        if (!a->skip_validation) {
+            a->scenes = refract::cli::validation_scenes(a->scenes, scenes->count() > 0);
+            const std::string hint = " (pass --scenes DIR or --skip-validation)";
+            try {
+                refract::validation::list_cases(a->scenes);
+            } catch (const refract::InputError& e) {
+                throw refract::InputError("reproduce: the validation cannot run: " + std::string(e.what()) + hint);
+            }
+            if (refract::validation::find_povray().empty())
+                throw refract::InputError("reproduce: the validation cannot run: POV-Ray executable 'povray' not found "
+                                          "(install POV-Ray 3.7 or pass --skip-validation)");
+        }
         const fs::path out(a->out);
         std::error_code ec;
         fs::create_directories(out, ec);
@@ -172,10 +189,12 @@ refract::cli::Registrar reg{90, [](CLI::App& app) {
                 val.problem = r.failed > 0 || r.skipped > 0;
                 val.note = std::to_string(r.passed) + " passed, " + std::to_string(r.failed) + " failed, " +
                            std::to_string(r.skipped) + " skipped (see report.html)";
-            } catch (const refract::InputError& e) {
+            } catch (const refract::InputError& e) {  // checked above: should not happen, but exits 2 if it does
                 val.note = std::string("not run: ") + e.what();
                 val.problem = true;
-                std::cerr << "validation not run: " << e.what() << std::endl;
+                sections.push_back(val);
+                ex::write_text_atomic((out / "index.html").string(), index_html(out, sections));
+                throw refract::InputError(std::string("reproduce: the validation did not run: ") + e.what());
             }
         }
         sections.push_back(val);

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/data_dir.h"
 #include <refract/geometry/error.h>
 #include <refract/validation/caustics.h>
 #include <refract/validation/random_suite.h>
@@ -35,7 +36,9 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
         "validate", "Cross-renderer validation: refract (compat povray) vs POV-Ray 3.7, physical mode vs analytic physics");
     sub->add_option("cases", args->cases, "Cases to run (default: all in the scenes directory)");
     sub->add_option("-o,--output", args->out_dir, "Report directory (report.md, report.html, images)");
-    sub->add_option("--scenes", args->scenes, "Directory of NAME.json scenes and NAME.tol.json tolerances");
+    auto* scenes = sub->add_option("--scenes", args->scenes,
+                                   "Directory of NAME.json scenes and NAME.tol.json tolerances (default: "
+                                   "scenes/validation, else the installed share/refract/scenes/validation)");
     sub->add_option("--threads", args->threads, "Threads for refract and POV-Ray (0: all cores)")
         ->check(refract::cli::thread_range());
     sub->add_option("--povray", args->povray, "POV-Ray executable (name on PATH or path)");
@@ -60,8 +63,9 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
         ->check(CLI::Range(0.001, 86400.0));
     sub->add_flag("--caustics", args->caustics,
                   "Only the caustic comparison: refract light pass vs POV-Ray photons, region means and a profile");
-    sub->callback([args] {
+    sub->callback([args, scenes] {
         namespace v = refract::validation;
+        args->scenes = refract::cli::validation_scenes(args->scenes, scenes->count() > 0);
         // POV-Ray is needed by every comparison: missing, it is bad input (exit 2), not a
         // suite of skipped cases.
         const auto need_povray = [&] {

@@ -1,6 +1,7 @@
 #include <refract/core/image_io.h>
 
 #include <dlfcn.h>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -15,22 +16,66 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Set by core/CMakeLists.txt: the module's file name, and its path in the build tree.
+// Set by core/CMakeLists.txt: the module's file name, its path in the build tree and the
+// build tree's root.
 constexpr const char* kModuleName = REFRACT_IMAGE_IO_NAME;
 constexpr const char* kBuildPath = REFRACT_IMAGE_IO_BUILD_PATH;
+constexpr const char* kBuildDir = REFRACT_BUILD_DIR;
 
-// Where to look, in order: $REFRACT_IMAGE_IO alone when set; else beside the executable,
-// in its ../lib/refract, then in the build tree.
+// The file holding this code: the executable when core is linked statically, else the
+// shared library or the Python module core is part of.
+fs::path this_object() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&image_io), &info) == 0 || !info.dli_fname || !*info.dli_fname) return {};
+    std::error_code ec;
+    const fs::path p = fs::canonical(info.dli_fname, ec);
+    return ec ? fs::path() : p;
+}
+
+bool inside(const fs::path& file, const fs::path& dir) {
+    std::error_code ec;
+    const fs::path d = fs::weakly_canonical(dir, ec);
+    if (ec || d.empty()) return false;
+    const auto rel = file.lexically_relative(d);
+    return !rel.empty() && *rel.begin() != "..";
+}
+
+}  // namespace
+}  // namespace refract
+
+// Defined by cmake/image_io_location.cpp in programs linking the installed refract::core:
+// the image module of that prefix (a static core cannot find it from its own file).
+extern "C" __attribute__((weak)) const char* refract_image_io_installed();
+
+namespace refract {
+namespace {
+
+// Where to look, in order: $REFRACT_IMAGE_IO alone when set; else beside the executable
+// and in its ../lib/refract; beside the object holding core (a shared library or the
+// Python module) and in its refract/ and ../lib/refract; the installed prefix's module of a
+// program built against the installed package; then, for a program inside the
+// build tree only, the build tree's module (an installed tree never depends on the build).
 std::vector<std::string> candidates() {
     if (const char* env = std::getenv("REFRACT_IMAGE_IO"); env && *env) return {env};
     std::vector<std::string> paths;
+    const auto add = [&](const fs::path& p) {
+        const std::string s = p.lexically_normal().string();
+        if (std::find(paths.begin(), paths.end(), s) == paths.end()) paths.push_back(s);
+    };
     std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    const fs::path exe = fs::canonical("/proc/self/exe", ec);
     if (!ec) {
-        paths.push_back((exe.parent_path() / kModuleName).string());
-        paths.push_back((exe.parent_path() / ".." / "lib" / "refract" / kModuleName).string());
+        add(exe.parent_path() / kModuleName);
+        add(exe.parent_path() / ".." / "lib" / "refract" / kModuleName);
     }
-    paths.push_back(kBuildPath);
+    const fs::path object = this_object();
+    if (!object.empty()) {
+        add(object.parent_path() / kModuleName);
+        add(object.parent_path() / "refract" / kModuleName);
+        add(object.parent_path() / ".." / "lib" / "refract" / kModuleName);
+    }
+    if (refract_image_io_installed) add(refract_image_io_installed());
+    if ((!ec && inside(exe, kBuildDir)) || (!object.empty() && inside(object, kBuildDir))) add(kBuildPath);
     return paths;
 }
 

@@ -6,10 +6,14 @@ refract.InputError (a ValueError) naming the file or source, the field or the pa
 """
 import os as _os
 
-# An installed package carries the image module beside it (the build tree's is found by core).
-_image_io = _os.path.join(_os.path.dirname(__file__), "librefract_image_io.so")
-if not _os.environ.get("REFRACT_IMAGE_IO") and _os.path.exists(_image_io):
-    _os.environ["REFRACT_IMAGE_IO"] = _image_io
+# An installed package carries the image module beside its native part, where core looks
+# for it (core/image_io.cpp); the build tree's is found by core too.
+
+try:  # declared in pyproject.toml; checked here so that its absence is one clear message
+    import numpy as _numpy  # noqa: F401
+except ImportError as _e:
+    raise ImportError("refract needs NumPy, which is not installed: pip install numpy "
+                      "(Debian: apt install python3-numpy)") from _e
 
 from . import _refract
 from ._refract import (  # noqa: F401  (the public API)
@@ -36,14 +40,21 @@ from ._refract import (  # noqa: F401  (the public API)
     write_image,
     yasuda1984,
 )
+from ._commands import angle_histogram, export_pov, farfield, measure, sweep, validate  # noqa: F401
+from ._refract import validation_cases  # noqa: F401
+import sys as _sys
+
+# `import refract.optics` and `from refract.fraunhofer import D` work as for modules.
+_sys.modules[__name__ + ".optics"] = optics
+_sys.modules[__name__ + ".fraunhofer"] = fraunhofer
 
 __all__ = [
-    "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "brilliant_presets",
-    "cut_brilliant", "dispersion", "experiments", "fraunhofer", "gem_geometry", "gem_metrics", "gem_proportions", "load_scene", "material",
-    "materials", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
-    "trace", "trace_pixel", "write_image", "yasuda1984",
+    "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "angle_histogram",
+    "brilliant_presets", "cut_brilliant", "dispersion", "experiments", "export_pov", "farfield", "fraunhofer", "gem_geometry", "gem_metrics", "gem_proportions", "load_scene", "material",
+    "materials", "measure", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
+    "sweep", "trace", "trace_pixel", "validate", "validation_cases", "write_image", "yasuda1984",
 ]
-__version__ = "0.1"
+__version__ = _refract.__version__  # the project's version (CMakeLists.txt)
 for _c in (Dispersion, FresnelTerms, InputError, Scene):
     _c.__module__ = "refract"
 

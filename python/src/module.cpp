@@ -388,4 +388,6 @@ PYBIND11_MODULE(_refract, m) {
     bind_optics(m);
     bind_gem(m);
     bind_experiments(m);
+    bind_commands(m);
+    m.attr("__version__") = REFRACT_VERSION;
 }
