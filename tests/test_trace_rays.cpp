@@ -116,3 +116,25 @@ TEST_CASE("trace_rays: a non-finite ray or a wavelength out of range is refused 
                       Catch::Contains("trace_rays: ray 1: wavelength 1000 nm is outside [360, 830] nm"));
     CHECK(trace_rays(session, o.data(), d.data(), nullptr, 0).n == 0);
 }
+
+TEST_CASE("Path record: a segment's parent is the node that pushed it, when two nodes end at one point", "[trace]") {
+    // The calcite plate's o and e waves leave its top at the very same point (segments 4 and
+    // 6 of pixel (15, 12)); each one's children are its own (they used to be found by the
+    // point, and all given to the later node).
+    const Scene s = load_scene(REFRACT_SOURCE_DIR "/scenes/examples/calcite-plate.json");
+    const TraceRecord r = trace_pixel(s, 15, 12);
+    REQUIRE(r.segments.size() > 11);
+    REQUIRE(r.segments[4].point == r.segments[6].point);
+    CHECK(r.segments[8].parent == 4);
+    CHECK(r.segments[9].parent == 4);
+    CHECK(r.segments[10].parent == 6);
+    CHECK(r.segments[11].parent == 6);
+    int children[64] = {};
+    for (const TraceSegment& seg : r.segments)
+        if (seg.parent >= 0) {
+            CHECK(seg.ray.origin == r.segments[static_cast<size_t>(seg.parent)].point);
+            ++children[seg.parent];
+        }
+    CHECK(children[4] == 2);
+    CHECK(children[6] == 2);
+}
