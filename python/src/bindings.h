@@ -174,5 +174,6 @@ py::object to_python(const T& v) {
 void bind_optics(py::module_& m);     // core/optics.h, core/spectrum/dispersion.h
 void bind_gem(py::module_& m);        // geometry/gem/brilliant.h
 void bind_experiments(py::module_& m);  // experiments/
+void bind_trace_rays(py::module_& m);   // core/trace_rays.h
 
 }  // namespace refract::python
