@@ -37,6 +37,7 @@ struct Args {
     int polarisation_pairs = 0;
     int birefringence_pairs = 0;
     bool kernels = false, meshes = false, objects = false, sweep = false, mesh_file = false;
+    bool trace = false, trace_quick = false;
     int sweep_rays = 0;
     std::string rtiow;
     int rounds = 0;  // 0: 5 for --kernels / --meshes, 3 for the diamond
@@ -302,6 +303,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
                   "1 and 2 MPI ranks (--threads: the sample's threads)");
     sub->add_option("--sweep-rays", a->sweep_rays, "With --sweep: rays per metric (default: the documented count)")
         ->check(CLI::Range(1, 1 << 24));
+    sub->add_flag("--trace", a->trace,
+                  "Only ray queries on the 1998 diamond: one ray's record (trace) and trace_rays, one thread and all");
+    sub->add_flag("--trace-quick", a->trace_quick, "With --trace: fewer calls and rays (seconds)");
     sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
@@ -309,7 +313,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
         // on one terminal the result lines themselves show the progress.
         Progress progress("bench", "", 0, cli::stderr_is_terminal() && isatty(STDOUT_FILENO) == 0);
         a->threads = worker_threads(a->threads);
-        if (a->kernels || a->meshes || a->objects || a->sweep || a->mesh_file || !a->rtiow.empty()) {
+        if (a->kernels || a->meshes || a->objects || a->sweep || a->mesh_file || a->trace || !a->rtiow.empty()) {
+            if (a->trace) cli::bench::trace(a->rounds > 0 ? a->rounds : 5, a->trace_quick);
             if (a->mesh_file) cli::bench::mesh_file();
             if (a->sweep) cli::bench::sweep(a->threads, a->sweep_rays);
             if (a->objects) cli::bench::objects(a->rounds > 0 ? a->rounds : 5);

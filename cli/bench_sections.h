@@ -36,4 +36,9 @@ void rtiow(const std::string& book, int rounds);
 // and 1 against 2 MPI ranks; `rays` > 0 replaces the documented ray count.
 void sweep(int threads, int rays);
 
+// Ray queries on the 1998 diamond: one ray's record through a TraceSession and without
+// one, and trace_rays over the camera's rays that meet the diamond, one thread and all;
+// `quick`: fewer calls and rays (the test of the documented figures).
+void trace(int rounds, bool quick);
+
 }  // namespace refract::cli::bench

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <type_traits>
@@ -14,14 +13,16 @@
 #include <refract/core/optics.h>
 #include <refract/core/ray_tree.h>
 #include <refract/core/spectrum/wavelengths.h>
+#include <refract/core/trace_walk.h>
 #include <refract/geometry/error.h>
 
 namespace refract {
 
 namespace {
 
-// Records every entry the walker pops; parents are found by the exact start point (a
-// child starts at its parent's hit point, and the FIFO list records parents first).
+// Records every entry the walker pops; a segment's parent is the node that pushed it (the
+// list is FIFO: the entries come back in the order their parents' nodes pushed them). Its
+// intercept() expands every node itself (trace_walk::expand), with one interaction.
 template <class P>
 class RecordingEnds {
 public:
@@ -34,18 +35,18 @@ public:
     void background(const Entry& e) {
         TraceSegment& s = start(e);
         s.event = "background";
-        s.light = light_of(e, s, tracer_.background(e.ray.dir));
+        s.light = trace_walk::light(e, s.weight, tracer_.background(e.ray.dir));
         rec_.radiance += s.light;
     }
 
     void leaf(const Entry& e, const SurfaceHit& h) {
         TraceSegment& s = rec_.segments[static_cast<size_t>(current_)];
         s.event = describe(*h.material, Interaction{}, h, e.ray, 0.0).event;
-        s.light = light_of(e, s, tracer_.local_light(h, stats_));
+        s.light = trace_walk::light(e, s.weight, tracer_.local_light(h, stats_));
         rec_.radiance += s.light;
     }
 
-    bool intercept(Walker&, const Entry& e, const SurfaceHit& h, typename Walker::List&) {
+    bool intercept(Walker& walker, const Entry& e, const SurfaceHit& h, typename Walker::List& list) {
         TraceSegment& s = start(e);
         current_ = s.id;
         s.hit = true;
@@ -58,22 +59,23 @@ public:
             if (h.hit.facet >= 0 && static_cast<size_t>(h.hit.facet) < c->labels.size())
                 s.facet_label = c->labels[static_cast<size_t>(h.hit.facet)];
         s.entering = h.entering;
-        hits_[key(h.hit.point)] = s.id;
         hit_material_[static_cast<size_t>(s.id)] = h.material;
-        const Interaction in = tracer_.interact(h, e.ray, stats_, band_ior(e, h), false, e.wave, wavelength(e),
-                                                std::is_same_v<P, EyeStokes>);
-        if (in.leaf) return false;  // leaf() names the event
-        const NodeRecord r = describe(*h.material, in, h, e.ray, band_ior(e, h));
-        s.event = r.event;
-        s.R = r.R;
-        if (r.dielectric) {
-            s.eta = r.eta;
-            s.cos_i = r.cos_i;
-            s.cos_t = r.cos_t;
-            s.Rs = r.Rs;
-            s.Rp = r.Rp;
+        const Interaction in = trace_walk::interact(tracer_, e, h, *this, stats_);
+        if (!in.leaf) {  // leaf() names a leaf's event
+            const NodeRecord r = describe(*h.material, in, h, e.ray, band_ior(e, h));
+            s.event = r.event;
+            s.R = r.R;
+            if (r.dielectric) {
+                s.eta = r.eta;
+                s.cos_i = r.cos_i;
+                s.cos_t = r.cos_t;
+                s.Rs = r.Rs;
+                s.Rp = r.Rp;
+            }
         }
-        return false;  // the walker expands the node as it always does
+        const int id = s.id;  // `s` moves as the children's segments are added later
+        trace_walk::expand(walker, e, h, in, list, *this, [&](int) { parents_.push_back(id); });
+        return true;
     }
 
     double band_ior(const Entry&, const SurfaceHit& h) const {
@@ -83,36 +85,23 @@ public:
     double wavelength(const Entry&) const { return nm_; }
 
 private:
-    using Key = std::tuple<double, double, double>;
-    static Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-
-    // What the segment brings to the root: the light L at its end as the walk sums it
-    // (under exact polarisation the camera's walk adds the S0 row of C·(L, 0, 0, 0)).
-    Vec3 light_of(const Entry& e, const TraceSegment& s, const Vec3& L) const {
-        if constexpr (std::is_same_v<P, EyeStokes>) return rgb_of(seen(e.pol, e.weight, L));
-        else return s.weight.cwiseProduct(L);
-    }
-
     TraceSegment& start(const Entry& e) {
         if (rec_.segments.size() >= kMaxTraceSegments)
             tree_too_large(tracer_.scene(), "took more than " + std::to_string(kMaxTraceSegments) +
                                                 " segments, the most a trace records");
-        TraceSegment s;
-        s.id = static_cast<int>(rec_.segments.size());
-        const auto it = hits_.find(key(e.ray.origin));
-        s.parent = rec_.segments.empty() || it == hits_.end() ? -1 : it->second;
+        TraceSegment& s = rec_.segments.emplace_back();
+        s.id = static_cast<int>(rec_.segments.size() - 1);
+        s.parent = s.id == 0 ? -1 : parents_[next_parent_++];
         s.depth = e.depth;
         s.reflections = e.reflections;
         s.transmissions = e.transmissions;
         s.ray = e.ray;
-        s.weight = e.weight;
+        s.weight = trace_walk::weight(e);
         if constexpr (std::is_same_v<P, LightStokes>) {
             s.polarised = true;
             s.stokes = e.pol.S;
             s.stokes_x = e.pol.x;
-            s.weight = e.weight * e.pol.S[0];
         }
-        if constexpr (std::is_same_v<P, EyeStokes>) s.weight = e.weight * throughput(e.pol);
         s.wave = e.wave;
         if (e.wave != biref::Wave::Isotropic && s.parent >= 0) {
             // A crystal's wave starts at the crystal's own surface: the parent's hit.
@@ -123,16 +112,16 @@ private:
                 s.wave_normal = k / s.index;
             }
         }
-        rec_.segments.push_back(s);
         hit_material_.push_back(nullptr);
-        return rec_.segments.back();
+        return s;
     }
 
     const SceneTracer& tracer_;
     double nm_;
     TraceRecord& rec_;
     RenderStats& stats_;
-    std::map<Key, int> hits_;
+    std::vector<int> parents_;  // the parent of each entry pushed, in the list's order
+    size_t next_parent_ = 0;    // that of the next entry popped
     std::vector<const Material*> hit_material_;  // per segment, the material at its end
     int current_ = -1;
 };
@@ -144,15 +133,14 @@ namespace {
 // The query's checks (the wavelength, a finite ray): the unit direction it is walked along
 // (a unit direction kept as it is: a camera ray traces as it renders).
 Vec3 checked_direction(const Scene& scene_in, const Ray& ray, double wavelength_nm) {
-    const std::string f = scene_in.source.empty() ? std::string("scene") : scene_in.source;
-    if (wavelength_nm != 0 && !(wavelength_nm >= spectrum::kMinWavelength && wavelength_nm <= spectrum::kMaxWavelength))
-        throw InputError(f + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
+    const auto name = [&] { return scene_in.source.empty() ? std::string("scene") : scene_in.source; };
+    if (!trace_walk::wavelength_ok(wavelength_nm))
+        throw InputError(name() + ": --wavelength " + std::to_string(wavelength_nm) + " nm is outside [" +
                          std::to_string(static_cast<int>(spectrum::kMinWavelength)) + ", " +
                          std::to_string(static_cast<int>(spectrum::kMaxWavelength)) + "] nm");
-    const auto unit = unit_vector(ray.dir);
-    if (!ray.origin.allFinite() || !unit)
-        throw InputError(f + ": the ray needs a finite origin and a finite, non-zero direction");
-    return std::abs(ray.dir.squaredNorm() - 1.0) < 1e-15 ? ray.dir : *unit;
+    const auto dir = trace_walk::direction(ray);
+    if (!dir) throw InputError(name() + ": the ray needs a finite origin and a finite, non-zero direction");
+    return *dir;
 }
 
 // The record of `ray` (direction `dir`) walked by `tracer` over `scene`.
@@ -160,17 +148,14 @@ TraceRecord walk_record(const SceneTracer& tracer, const Scene& scene, const Ray
                         double wavelength_nm, const PolarisationState* polarisation) {
     TraceRecord rec;
     rec.wavelength_nm = wavelength_nm;
+    rec.segments.reserve(64);
     RenderStats stats;
-    TreeLimits limits = tree_limits(scene.settings);
-    limits.max_reflections = scene.settings.spectral.max_reflections.value_or(TreeLimits::kUnlimited);
-    limits.max_transmissions = scene.settings.spectral.max_transmissions.value_or(TreeLimits::kUnlimited);
+    const TreeLimits limits = trace_walk::limits(scene);
     const auto walk = [&](auto payload) {
         using P = decltype(payload);
         RayTreeWalkerT<P> walker(tracer, limits, stats);
         RecordingEnds<P> ends(tracer, wavelength_nm, rec, stats);
-        typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{Ray{ray.origin, dir}, Vec3(1, 1, 1)}};
-        if constexpr (std::is_same_v<P, LightStokes>) list.front().pol = emitted(*polarisation, dir);
-        if constexpr (std::is_same_v<P, EyeStokes>) list.front().pol = camera_stokes(scene, list.front().ray);
+        typename RayTreeWalkerT<P>::List list{trace_walk::root<P>(scene, ray, dir, polarisation)};
         walker.walk(list, ends);
     };
     if (polarisation) walk(LightStokes{});
@@ -242,6 +227,8 @@ const TraceSession::Walk& TraceSession::walk(bool polarised) const {
     });
     return *walks_[k];
 }
+
+const SceneTracer& TraceSession::tracer(bool polarised) const { return walk(polarised).tracer; }
 
 TraceRecord TraceSession::ray(const Ray& ray, double wavelength_nm, const PolarisationState* polarisation) const {
     const Vec3 dir = checked_direction(*scene_, ray, wavelength_nm);

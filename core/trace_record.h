@@ -14,6 +14,8 @@
 
 namespace refract {
 
+class SceneTracer;
+
 struct TraceSegment {
     int id = 0;
     int parent = -1;     // the segment whose end this one starts from; −1: the primary ray
@@ -96,6 +98,9 @@ public:
     TraceRecord ray(const Ray& ray, double wavelength_nm = 0, const PolarisationState* polarisation = nullptr) const;
     TraceRecord pixel(int i, int j, double wavelength_nm = 0, const PolarisationState* polarisation = nullptr) const;
     const Scene& scene() const { return *scene_; }
+    // The tracer of the camera's walk under the scene's model (`polarised`: of the exact
+    // model's walk), built on first use; its scene() is the one it walks.
+    const SceneTracer& tracer(bool polarised = false) const;
 
     struct Walk;  // a scene as walked (its own model, or the exact one) and its tracer
 

@@ -52,7 +52,7 @@ __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "angle_histogram",
     "brilliant_presets", "cut_brilliant", "dispersion", "experiments", "export_pov", "farfield", "fraunhofer", "gem_geometry", "gem_metrics", "gem_proportions", "load_scene", "material",
     "materials", "measure", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
-    "sweep", "trace", "trace_pixel", "validate", "validation_cases", "write_image", "yasuda1984",
+    "sweep", "trace", "trace_pixel", "trace_rays", "validate", "validation_cases", "write_image", "yasuda1984",
 ]
 __version__ = _refract.__version__  # the project's version (CMakeLists.txt)
 for _c in (Dispersion, FresnelTerms, InputError, Scene):
@@ -130,6 +130,27 @@ def trace(scene_, origin, direction, wavelength=None, polarisation=None):
     node's direction, y = direction x x; docs/polarisation.md), and "weight" is the colour
     weight times S0."""
     return RayTree(*_session(scene(scene_), polarisation).ray(origin, direction, wavelength, polarisation))
+
+
+def trace_rays(scene_, origins, directions, wavelengths=None, threads=0, trees=False):
+    """Many rays at once: per ray what its tree (as trace() records it) sums to, as NumPy arrays.
+
+    origins, directions: (n, 3); wavelengths: None (RGB rays), one number or (n,) in nm (0: an
+    RGB ray). threads: 0 all cores (the values do not depend on it). Returns a dict:
+    point (n, 3) the first hit (NaN: none), object (n,) its index in scene.objects (-1: none),
+    facet (n,), radiance (n, 3) the ray's value, escaped (n, 3) the summed weight of the
+    segments leaving the scene and exit_direction (n, 3) that of the strongest of them (NaN:
+    none), Rs and Rp (n,) summed over the dielectric nodes, segments (n,); with trees=True also
+    "trees", each ray's RayTree (as trace(), one ray at a time)."""
+    s = scene(scene_)
+    result = _refract.trace_rays(_session(s, None), origins, directions, wavelengths, threads)
+    if trees:
+        import numpy as np
+        o = np.asarray(origins, dtype=float).reshape(-1, 3)
+        d = np.asarray(directions, dtype=float).reshape(-1, 3)
+        w = None if wavelengths is None else np.broadcast_to(np.asarray(wavelengths, dtype=float), (len(o),))
+        result["trees"] = [trace(s, o[i], d[i], None if w is None or w[i] == 0 else float(w[i])) for i in range(len(o))]
+    return result
 
 
 def trace_pixel(scene_, x, y, wavelength=None, polarisation=None):

@@ -175,5 +175,6 @@ void bind_optics(py::module_& m);     // core/optics.h, core/spectrum/dispersion
 void bind_gem(py::module_& m);        // geometry/gem/brilliant.h
 void bind_experiments(py::module_& m);  // experiments/
 void bind_commands(py::module_& m);     // farfield, measure, export-pov, validate, sweep
+void bind_trace_rays(py::module_& m);   // core/trace_rays.h
 
 }  // namespace refract::python

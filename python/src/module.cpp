@@ -204,47 +204,97 @@ const NodeKeys& keys() {
     return *k;
 }
 
+// The C API directly (one dict presized per node, new references stolen): a node costs
+// about half what item assignments through pybind11 cost.
+PyObject* float3(const Vec3& v) {
+    PyObject* t = PyTuple_New(3);
+    for (int k = 0; k < 3; ++k) PyTuple_SET_ITEM(t, k, PyFloat_FromDouble(v[k]));
+    return t;
+}
+PyObject* none_ref() {
+    Py_INCREF(Py_None);
+    return Py_None;
+}
+PyObject* bool_ref(bool b) {
+    PyObject* o = b ? Py_True : Py_False;
+    Py_INCREF(o);
+    return o;
+}
+// A str per distinct text of a few (the events): made once, shared by every node.
+PyObject* text_ref(const std::string& text) {
+    static std::vector<std::pair<std::string, PyObject*>>* seen = new std::vector<std::pair<std::string, PyObject*>>();
+    for (const auto& [t, o] : *seen)
+        if (t == text) {
+            Py_INCREF(o);
+            return o;
+        }
+    PyObject* o = PyUnicode_FromStringAndSize(text.data(), static_cast<Py_ssize_t>(text.size()));
+    if (o && seen->size() < 64) {
+        Py_INCREF(o);  // the cache's reference: never released (Python may be gone at exit)
+        seen->emplace_back(text, o);
+    }
+    return o;
+}
+
 py::tuple trace_result(const TraceRecord& rec) {
     const NodeKeys& k = keys();
     py::list nodes(rec.segments.size());
-    const py::object none = py::none();
-    const py::object wl = rec.wavelength_nm > 0 ? py::object(py::float_(rec.wavelength_nm)) : none;
+    const py::object wl = rec.wavelength_nm > 0 ? py::object(py::float_(rec.wavelength_nm)) : py::none();
     size_t n = 0;
     for (const TraceSegment& s : rec.segments) {
-        py::dict d;
-        d[k.id] = s.id;
-        d[k.parent] = s.parent;
-        d[k.depth] = s.depth;
-        d[k.reflections] = s.reflections;
-        d[k.transmissions] = s.transmissions;
-        d[k.origin] = tuple3(s.ray.origin);
-        d[k.direction] = tuple3(s.ray.dir);
-        d[k.weight] = tuple3(s.weight);
-        d[k.event] = s.event;
-        d[k.hit] = s.hit;
-        d[k.length] = s.hit ? py::object(py::float_(s.length)) : none;
-        d[k.point] = s.hit ? py::object(tuple3(s.point)) : none;
-        d[k.normal] = s.hit ? py::object(tuple3(s.normal)) : none;
-        d[k.object] = s.hit ? py::object(py::str(s.object)) : none;
-        d[k.facet] = s.facet;
-        d[k.facet_label] = s.facet_label.empty() ? none : py::object(py::str(s.facet_label));
-        d[k.entering] = s.entering;
+        py::object dict = py::reinterpret_steal<py::object>(_PyDict_NewPresized(30));
+        PyObject* d = dict.ptr();
+        const auto put = [&](const py::object& key, PyObject* value) {  // steals value
+            if (!value || PyDict_SetItem(d, key.ptr(), value) != 0) {
+                Py_XDECREF(value);
+                throw py::error_already_set();
+            }
+            Py_DECREF(value);
+        };
+        const auto number = [&](bool has, double v) { return has ? PyFloat_FromDouble(v) : none_ref(); };
+        put(k.id, PyLong_FromLong(s.id));
+        put(k.parent, PyLong_FromLong(s.parent));
+        put(k.depth, PyLong_FromLong(s.depth));
+        put(k.reflections, PyLong_FromLong(s.reflections));
+        put(k.transmissions, PyLong_FromLong(s.transmissions));
+        put(k.origin, float3(s.ray.origin));
+        put(k.direction, float3(s.ray.dir));
+        put(k.weight, float3(s.weight));
+        put(k.event, text_ref(s.event));
+        put(k.hit, bool_ref(s.hit));
+        put(k.length, number(s.hit, s.length));
+        put(k.point, s.hit ? float3(s.point) : none_ref());
+        put(k.normal, s.hit ? float3(s.normal) : none_ref());
+        put(k.object, s.hit ? PyUnicode_FromStringAndSize(s.object.data(), static_cast<Py_ssize_t>(s.object.size()))
+                            : none_ref());
+        put(k.facet, PyLong_FromLong(s.facet));
+        put(k.facet_label, s.facet_label.empty() ? none_ref()
+                                                 : PyUnicode_FromStringAndSize(s.facet_label.data(),
+                                                                               static_cast<Py_ssize_t>(s.facet_label.size())));
+        put(k.entering, bool_ref(s.entering));
         const bool dielectric = s.eta > 0;
-        d[k.eta] = dielectric ? py::object(py::float_(s.eta)) : none;
-        d[k.cos_i] = dielectric ? py::object(py::float_(s.cos_i)) : none;
-        d[k.cos_t] = dielectric ? py::object(py::float_(s.cos_t)) : none;
-        d[k.Rs] = dielectric ? py::object(py::float_(s.Rs)) : none;
-        d[k.Rp] = dielectric ? py::object(py::float_(s.Rp)) : none;
-        d[k.R] = s.hit && s.event != "diffuse" && s.event != "emissive" ? py::object(py::float_(s.R)) : none;
-        d[k.light] = tuple3(s.light);
-        d[k.wavelength] = wl;
-        d[k.stokes] = s.polarised ? py::object(py::make_tuple(s.stokes[0], s.stokes[1], s.stokes[2], s.stokes[3])) : none;
-        d[k.stokes_x] = s.polarised ? py::object(tuple3(s.stokes_x)) : none;
+        put(k.eta, number(dielectric, s.eta));
+        put(k.cos_i, number(dielectric, s.cos_i));
+        put(k.cos_t, number(dielectric, s.cos_t));
+        put(k.Rs, number(dielectric, s.Rs));
+        put(k.Rp, number(dielectric, s.Rp));
+        put(k.R, number(s.hit && s.event != "diffuse" && s.event != "emissive", s.R));
+        put(k.light, float3(s.light));
+        put(k.wavelength, wl.inc_ref().ptr());
+        if (s.polarised) {
+            PyObject* t = PyTuple_New(4);
+            for (int c = 0; c < 4; ++c) PyTuple_SET_ITEM(t, c, PyFloat_FromDouble(s.stokes[c]));
+            put(k.stokes, t);
+            put(k.stokes_x, float3(s.stokes_x));
+        } else {
+            put(k.stokes, none_ref());
+            put(k.stokes_x, none_ref());
+        }
         const bool crystal = s.wave != biref::Wave::Isotropic;
-        d[k.wave] = crystal ? py::object(py::str(s.wave == biref::Wave::Ordinary ? "o" : "e")) : none;
-        d[k.index] = crystal && s.index > 0 ? py::object(py::float_(s.index)) : none;
-        d[k.wave_normal] = crystal && s.index > 0 ? py::object(tuple3(s.wave_normal)) : none;
-        PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), d.release().ptr());
+        put(k.wave, crystal ? PyUnicode_FromString(s.wave == biref::Wave::Ordinary ? "o" : "e") : none_ref());
+        put(k.index, number(crystal && s.index > 0, s.index));
+        put(k.wave_normal, crystal && s.index > 0 ? float3(s.wave_normal) : none_ref());
+        PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), dict.release().ptr());
     }
     return py::make_tuple(nodes, tuple3(rec.radiance), wl);
 }
@@ -390,4 +440,5 @@ PYBIND11_MODULE(_refract, m) {
     bind_experiments(m);
     bind_commands(m);
     m.attr("__version__") = REFRACT_VERSION;
+    bind_trace_rays(m);
 }

@@ -149,3 +149,53 @@ def test_segments_inside_calcite_name_their_wave_and_index():
     assert inside["e"]["index"] == pytest.approx(ne45, abs=2e-5)
     assert inside["e"]["wave_normal"] == pytest.approx((0, -1, 0), abs=1e-12)
     assert all(n["wave"] is None and n["index"] is None for n in tree if n["parent"] == -1)
+
+
+def test_trace_rays_gives_each_ray_its_trees_sums(source_dir):
+    scene = refract.scene(os.path.join(source_dir, "scenes", "examples", "ohtsuka1998-diamond.json"))
+    trees = [refract.trace_pixel(scene, x, y) for x, y in [(320, 200), (300, 260), (10, 10), (330, 420)]]
+    o = np.array([t[0]["origin"] for t in trees])
+    d = np.array([t[0]["direction"] for t in trees])
+    w = np.array([450.0, 0.0, 600.0, 700.0])
+    r = refract.trace_rays(scene, o, d, w, threads=2, trees=True)
+    assert r["radiance"].shape == (4, 3) and r["segments"].dtype == np.int32
+    for i, tree in enumerate(r["trees"]):
+        assert tree == refract.trace(scene, o[i], d[i], None if w[i] == 0 else w[i])
+        assert r["segments"][i] == len(tree)
+        assert tuple(r["radiance"][i]) == tree.radiance
+        first = tree[0]
+        assert r["object"][i] == (scene.objects.index(first["object"]) if first["hit"] else -1)
+        if first["hit"]:
+            assert tuple(r["point"][i]) == first["point"]
+        assert r["Rs"][i] == sum(n["Rs"] or 0.0 for n in tree)
+        leaves = [n for n in tree if n["event"] == "background"]
+        assert tuple(r["escaped"][i]) == tuple(sum(np.array(n["weight"]) for n in leaves)) if leaves else True
+    assert r["object"][0] == 1 and r["segments"][0] > 10  # the table of the gem
+    with pytest.raises(refract.InputError, match="trace_rays: ray 1 needs a finite origin"):
+        refract.trace_rays(scene, [[0, 0, 0], [0, 0, math.nan]], [[0, 0, 1], [0, 0, 1]])
+    with pytest.raises(refract.InputError, match=r"directions: must be an array of shape \(n, 3\)"):
+        refract.trace_rays(scene, o, [1, 2])
+
+
+def test_documented_trace_figures_are_within_2x_of_the_benchmark(source_dir):
+    """docs/python.md quotes python/benchmarks/trace_speed.py; a short run of it (thread CPU
+    time, the best of its rounds) stays within 2x of those figures."""
+    import importlib.util
+    import re
+    spec = importlib.util.spec_from_file_location(
+        "trace_speed", os.path.join(source_dir, "python", "benchmarks", "trace_speed.py"))
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    lines = []
+    bench.main(quick=True, rounds=3, out=lines.append)
+    run = "\n".join(lines)
+    with open(os.path.join(source_dir, "docs", "python.md")) as f:
+        doc = f.read()
+
+    def best(text, label):
+        m = re.search(re.escape(label) + r"[^\n]*best ([0-9.]+)", text)
+        assert m, (label, text)
+        return float(m.group(1))
+    for label in ("refract.trace, one ray:", "refract.trace_rays, one thread:"):
+        documented, measured = best(doc, label), best(run, label)
+        assert 0.5 * documented <= measured <= 2 * documented, (label, documented, measured, run)
