@@ -90,36 +90,41 @@ std::string contour_body(const Result& r, size_t k) {
     markers.emplace_back(r.optima[k].best.cut.crown_angle, r.optima[k].best.cut.pavilion_angle);
     std::vector<double> levels;
     for (int i = 0; i < lv.count; ++i) levels.push_back(lv.start + i * lv.step);
-    const std::string map = "'gem_cuts_map.dat' using 1:2:" + std::to_string(3 + k);
-    const std::string next = ", \\\n      ";
+    const std::string col = std::to_string(3 + k), next = ", \\\n     ";
     std::ostringstream b;
-    b << "set view map\nset contour base\nunset key\n"
-      << "set lmargin at screen 0.11\nset rmargin at screen 0.8\nset bmargin at screen 0.15\nset tmargin at screen 0.84\n"
-      << "set cntrparam levels incremental " << sw::number(lv.start) << "," << sw::number(lv.step) << ","
-      << sw::number(lv.end) << "\nset cntrlabel onecolor\n"
-      << "set style textbox opaque noborder margins 1,1\nlabel_font = (fmt eq 'png') ? ',9' : ',7'\n";
+    // The contour lines into a data block (a 3-D pass), then a 2-D plot: each cut a cell
+    // (impossible cuts, NaN, left blank), the lines, the labels and the markers.
+    b << "set lmargin at screen 0.11\nset rmargin at screen 0.8\nset bmargin at screen 0.15\nset tmargin at screen 0.84\n";
+    if (lv.count > 0)
+        b << "set contour base\nunset surface\nset cntrparam levels incremental " << sw::number(lv.start) << ","
+          << sw::number(lv.step) << "," << sw::number(lv.end) << "\nset table $contours\nsplot 'gem_cuts_map.dat' using 1:2:"
+          << col << "\nunset table\nunset contour\n";
+    b << "unset key\nset style textbox opaque noborder margins 1,1\nlabel_font = (fmt eq 'png') ? ',9' : ',7'\n";
     for (const auto& l : place_contour_labels(grid, levels, lv.format, frame, markers))
         b << "set label '" << l.text << "' at " << sw::number(l.x) << "," << sw::number(l.y)
-          << ",0 center front boxed font label_font\n";
+          << " center front boxed font label_font\n";
     b << viridis_palette() << "\nset cbrange [" << sw::number(lo) << ":" << sw::number(hi) << "]\n"
       << "set cblabel '" << m.title << "'\n"
       << "set xlabel 'crown angle (deg)'\nset ylabel 'pavilion angle (deg)'\n"
       << "set title \"" << m.title << (m.maximise ? "" : " (smaller is better)") << "\\n{/=9 "
       << (shared ? "circle: Tolkowsky 1919 and GIA default (the same crown and pavilion)"
                  : "circle: Tolkowsky 1919, square: GIA default")
-      << ", star: best in the grid}\"\n"
+      << ", star: best in the grid" << (r.impossible > 0 ? ", blank: impossible cut" : "") << "}\"\n"
       << "set xrange [" << sw::number(frame.x0) << ":" << sw::number(frame.x1) << "]\nset yrange ["
       << sw::number(frame.y0) << ":" << sw::number(frame.y1) << "]\n"
-      << "splot " << map << " with image nocontours" << next << map << " with lines lc rgb 'white' lw 2.2 nosurface"
-      << next << map << " with lines lc rgb 'black' lw 0.8 nosurface"
-      << next << "'gem_cuts_marks.dat' index 0 using 1:2:(0) with points nocontours pt 7 ps 2.2 lc rgb 'white'" << next
-      << "'gem_cuts_marks.dat' index 0 using 1:2:(0) with points nocontours pt 6 ps 2.2 lw 2 lc rgb 'black'";
+      // Cells 2 % wider than the grid step: no seams between them.
+      << "plot 'gem_cuts_map.dat' using 1:2:(" << sw::number(1.02 * axis_half_step(ax)) << "):("
+      << sw::number(1.02 * axis_half_step(ay)) << "):" << col << " with boxxyerror fs solid 1.0 noborder fc palette";
+    if (lv.count > 0)
+        b << next << "$contours using 1:2 with lines lc rgb 'white' lw 2.2" << next
+          << "$contours using 1:2 with lines lc rgb 'black' lw 0.8";
+    b << next << "'gem_cuts_marks.dat' index 0 using 1:2 with points pt 7 ps 2.2 lc rgb 'white'" << next
+      << "'gem_cuts_marks.dat' index 0 using 1:2 with points pt 6 ps 2.2 lw 2 lc rgb 'black'";
     if (!shared)
-        b << next << "'gem_cuts_marks.dat' index 1 using 1:2:(0) with points nocontours pt 5 ps 1.4 lc rgb 'white'"
-          << next << "'gem_cuts_marks.dat' index 1 using 1:2:(0) with points nocontours pt 5 ps 0.9 lc rgb 'black'";
-    b << next << "'gem_cuts_best_marks.dat' index " << k
-      << " using 1:2:(0) with points nocontours pt 3 ps 2.2 lw 5 lc rgb 'white'" << next
-      << "'gem_cuts_best_marks.dat' index " << k << " using 1:2:(0) with points nocontours pt 3 ps 2 lw 2 lc rgb 'black'\n";
+        b << next << "'gem_cuts_marks.dat' index 1 using 1:2 with points pt 5 ps 1.4 lc rgb 'white'" << next
+          << "'gem_cuts_marks.dat' index 1 using 1:2 with points pt 5 ps 0.9 lc rgb 'black'";
+    b << next << "'gem_cuts_best_marks.dat' index " << k << " using 1:2 with points pt 3 ps 2.2 lw 5 lc rgb 'white'"
+      << next << "'gem_cuts_best_marks.dat' index " << k << " using 1:2 with points pt 3 ps 2 lw 2 lc rgb 'black'\n";
     return b.str();
 }
 
@@ -185,7 +190,7 @@ void write(const Result& r, const std::string& dir) {
       << " %).\n\n"
       << "## Where each metric is best, and Tolkowsky's distance from it\n\n"
       << "Contour maps `gem_cuts_METRIC.png` / `.pdf` (crown angle × pavilion angle, the other parameters the GIA default; circle Tolkowsky, "
-      << "square GIA default " << marks_text(r) << " (a single circle where the two share their angles), star the grid's best; viridis colour scale over the range the cuts span, contours at round levels, labelled). The grid's best value is the largest of many "
+      << "square GIA default " << marks_text(r) << (r.findings.presets_share_angles ? ", drawn as one circle" : "") << ", star the grid's best; viridis colour scale over the range the cuts span, contours at round levels, labelled). The grid's best value is the largest of many "
       << "noisy cells and so biased towards better; the difference is given in combined standard errors.\n\n"
       << "| metric | best crown | best pavilion | best value ± error | Tolkowsky ± error | Δcrown | Δpavilion | "
          "difference / σ |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";

@@ -209,7 +209,8 @@ ContourLevels round_contour_levels(double lo, double hi, int max_levels) {
     for (int e = 0; e < 5; ++e)
         for (double m : {1.0, 2.0, 2.5, 5.0}) {
             const double step = m * decade * std::pow(10.0, e);
-            const double first = std::floor(lo / step) + 1, last = std::ceil(hi / step) - 1;
+            // Strictly inside (lo, hi), with a tolerance for lo or hi on a level.
+            const double first = std::floor(lo / step + 1e-9) + 1, last = std::ceil(hi / step - 1e-9) - 1;
             const int count = static_cast<int>(last - first) + 1;
             if (count > max_levels) continue;
             ContourLevels c;

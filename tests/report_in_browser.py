@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Opens refract's HTML report in headless Chromium and fails on a broken link, a missing
-image or a console error; keeps a screenshot of the overview page.
+image or a console error; keeps a screenshot of the experiment's page.
 
     report_in_browser.py --refract EXE --work DIR [--screenshot FILE]
 
@@ -16,6 +16,7 @@ JSON messages ending in NUL on descriptors 3 and 4); the Python standard library
 Exit 77 (a skip for CTest) when no Chromium is installed.
 """
 import argparse
+import base64
 import fcntl
 import json
 import os
@@ -237,10 +238,9 @@ def main():
         if not self_check(browser, work):
             return 1
         problems, pages = check_site(browser, os.path.join(out, "index.html"))
-        visit(browser, "file://" + urllib.parse.quote(os.path.join(out, "index.html")))
+        visit(browser, "file://" + urllib.parse.quote(os.path.join(out, "gem-cuts.html")))
         shot = a.screenshot or os.path.join(work, "report.png")
         png = browser.call("Page.captureScreenshot", {"format": "png"})["data"]
-        import base64
         with open(shot, "wb") as f:
             f.write(base64.b64decode(png))
     finally:

@@ -14,6 +14,7 @@
 #include <refract/experiments/report_site.h>
 #include <refract/validation/files.h>
 
+#include "tests/cli_run.h"
 #include "tests/temp_dir.h"
 
 using namespace refract::experiments;
@@ -61,8 +62,9 @@ TEST_CASE("contour levels are round numbers inside the data's range, at most the
     CHECK(fire.start == Approx(0.04));
     CHECK(fire.step == Approx(0.02));
     CHECK(fire.count == 4);
-    const ContourLevels q = round_contour_levels(0.31, 0.39, 5);
+    const ContourLevels q = round_contour_levels(0.30, 0.43, 5);  // 0.02 would give 6 levels
     CHECK(q.step == Approx(0.025));
+    CHECK(q.start == Approx(0.325));
     CHECK(q.format == "%.3f");
     CHECK(round_contour_levels(120, 980, 6).step == Approx(200));
     CHECK(round_contour_levels(120, 980, 6).format == "%.0f");
@@ -106,4 +108,20 @@ TEST_CASE("the report has a page per section with navigation, the summary as HTM
             CHECK(fs::exists(out / (*it)[1].str()));
     CHECK(checked > 20);
     fs::remove_all(out);
+}
+
+TEST_CASE("refract report: a results directory gets its pages; a missing or empty one is refused with one line, "
+          "nothing written") {
+    const fs::path dir = refract::test::fresh_dir("report", "cli");
+    refract::test::check_refused(refract::test::run("report " + (dir / "none").string(), dir), "none: not a directory");
+    fs::create_directories(dir / "empty");
+    refract::test::check_refused(refract::test::run("report " + (dir / "empty").string(), dir),
+                                 "no experiment or validation results");
+    CHECK_FALSE(fs::exists(dir / "empty/index.html"));
+    put(dir / "out/gem-cuts/summary.md", "# gem-cuts\n");
+    const auto ok = refract::test::run("report " + (dir / "out").string(), dir);
+    CHECK(ok.code == 0);
+    CHECK(fs::exists(dir / "out/index.html"));
+    CHECK(fs::exists(dir / "out/gem-cuts.html"));
+    fs::remove_all(dir);
 }
