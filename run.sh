@@ -2,7 +2,8 @@
 # refract's one set-up script (Debian 12, as root or with sudo):
 #   bash run.sh reproduce   install what is missing, build, reproduce every figure and
 #                           the validation report into out/ (open out/index.html)
-#   bash run.sh test        install what is missing, build, run the test suite (ctest), then
+#   bash run.sh test        install what is missing (and chromium, for the report's browser
+#                           test), build, run the test suite (ctest), then
 #                           the sanitizer build, its tests and 20 s of fuzzing
 #   bash run.sh build       install and build only
 #   bash run.sh sanitize    the sanitizer build (clang, ASan, UBSan, the fuzzer's coverage) of
@@ -87,6 +88,8 @@ case "${1:-}" in
         ./build/cli/refract reproduce -o out "$@"
         ;;
     test)
+        # Chromium for the report's browser test only (tests/report_in_browser.py).
+        PACKAGES+=(chromium)
         install_missing
         build
         ctest --test-dir build --output-on-failure -j "$(nproc)"

@@ -6,6 +6,7 @@
 
 #include <refract/core/provenance.h>
 #include <refract/experiments/common.h>
+#include <refract/experiments/contour_labels.h>
 #include <refract/experiments/gem_cuts.h>
 #include <refract/experiments/gem_sweep_file.h>
 #include <refract/experiments/plot.h>
@@ -40,24 +41,93 @@ std::string map_text(const Result& r) {
     return t.str();
 }
 
+// Half a grid step: the plotted range reaches that far beyond the first and last values, so
+// that each cut is a whole cell and a marker on the outermost row or column is not clipped.
+double axis_half_step(const sw::Axis& a) { return a.count > 1 ? 0.5 * (a.value(1) - a.value(0)) : 0.5; }
+
+// One metric's map: viridis over the range the possible cuts span; contour lines at round
+// levels with a white rim (they read on the dark and the light end alike), each labelled
+// once where the label covers no marker, other label or other line; the reference cuts and
+// the grid's best as outlined markers, explained in the subtitle (outside the map). The two
+// reference cuts share one marker when they share their angles (they differ in the table).
 std::string contour_body(const Result& r, size_t k) {
     const MetricInfo& m = metrics()[k];
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& row : r.main_rows)
+        if (row.possible) {
+            const double v = metric_of(row.metrics, m.key).value;
+            lo = std::fmin(lo, v);
+            hi = std::fmax(hi, v);
+        }
+    if (!(lo < hi)) {  // one cut or a flat map: a range around it
+        const double c = std::isfinite(lo) ? lo : 0.5, d = std::fmax(std::fabs(c) * 0.01, 1e-3);
+        lo = c - d;
+        hi = c + d;
+    }
+    const ContourLevels lv = round_contour_levels(lo, hi, 5);
+    const bool shared = r.findings.presets_share_angles;
+    // The contour labels, placed clear of the markers, of each other and of the other lines
+    // (experiments/contour_labels.h) in the plot area the margins below fix.
+    const sw::Axis &ax = r.main.grid.axes[1], &ay = r.main.grid.axes[2];
+    GridMap grid;
+    for (int i = 0; i < ax.count; ++i) grid.x.push_back(ax.value(i));
+    for (int j = 0; j < ay.count; ++j) grid.y.push_back(ay.value(j));
+    grid.values.assign(grid.x.size() * grid.y.size(), std::nan(""));
+    auto index_of = [](const std::vector<double>& axis, double v) {
+        size_t best = 0;
+        for (size_t i = 1; i < axis.size(); ++i)
+            if (std::fabs(axis[i] - v) < std::fabs(axis[best] - v)) best = i;
+        return best;
+    };
+    for (const auto& row : r.main_rows)
+        if (row.possible)
+            grid.values[index_of(grid.x, row.cut.crown_angle) * grid.y.size() + index_of(grid.y, row.cut.pavilion_angle)] =
+                metric_of(row.metrics, m.key).value;
+    PlotFrame frame;
+    frame.x0 = grid.x.front() - axis_half_step(ax);
+    frame.x1 = grid.x.back() + axis_half_step(ax);
+    frame.y0 = grid.y.front() - axis_half_step(ay);
+    frame.y1 = grid.y.back() + axis_half_step(ay);
+    std::vector<std::pair<double, double>> markers;
+    for (const auto& p : r.presets) markers.emplace_back(p.second.cut.crown_angle, p.second.cut.pavilion_angle);
+    markers.emplace_back(r.optima[k].best.cut.crown_angle, r.optima[k].best.cut.pavilion_angle);
+    std::vector<double> levels;
+    for (int i = 0; i < lv.count; ++i) levels.push_back(lv.start + i * lv.step);
+    const std::string col = std::to_string(3 + k), next = ", \\\n     ";
     std::ostringstream b;
-    b << "set datafile missing 'NaN'\n"
-      << "set view map\nset pm3d at b\nset contour base\nset cntrparam levels auto 8\nunset clabel\n"
-      << "set palette rgbformulae 33,13,10\nunset key\n"
+    // The contour lines into a data block (a 3-D pass), then a 2-D plot: each cut a cell
+    // (impossible cuts, NaN, left blank), the lines, the labels and the markers.
+    b << "set lmargin at screen 0.11\nset rmargin at screen 0.8\nset bmargin at screen 0.15\nset tmargin at screen 0.84\n";
+    if (lv.count > 0)
+        b << "set contour base\nunset surface\nset cntrparam levels incremental " << sw::number(lv.start) << ","
+          << sw::number(lv.step) << "," << sw::number(lv.end) << "\nset table $contours\nsplot 'gem_cuts_map.dat' using 1:2:"
+          << col << "\nunset table\nunset contour\n";
+    b << "unset key\nset style textbox opaque noborder margins 1,1\nlabel_font = (fmt eq 'png') ? ',9' : ',7'\n";
+    for (const auto& l : place_contour_labels(grid, levels, lv.format, frame, markers))
+        b << "set label '" << l.text << "' at " << sw::number(l.x) << "," << sw::number(l.y)
+          << " center front boxed font label_font\n";
+    b << viridis_palette() << "\nset cbrange [" << sw::number(lo) << ":" << sw::number(hi) << "]\n"
+      << "set cblabel '" << m.title << "'\n"
       << "set xlabel 'crown angle (deg)'\nset ylabel 'pavilion angle (deg)'\n"
-      << "set title \"" << m.title << (m.maximise ? "" : " (smaller is better)")
-      << "\\n{/=9 circle: Tolkowsky 1919, square: GIA default, star: best in the grid}\"\n"
-      << "set xrange [" << r.main.grid.axes[1].value(0) << ":" << r.main.grid.axes[1].value(r.main.grid.axes[1].count - 1)
-      << "]\nset yrange [" << r.main.grid.axes[2].value(0) << ":"
-      << r.main.grid.axes[2].value(r.main.grid.axes[2].count - 1) << "]\n"
-      << "splot 'gem_cuts_map.dat' using 1:2:" << 3 + k << " with pm3d nocontours notitle, \\\n"
-      << "      '' using 1:2:" << 3 + k << " with lines nosurface lc rgb 'black' lw 0.8 notitle, \\\n"
-      << "      'gem_cuts_marks.dat' index 0 using 1:2:(0) with points nocontours pt 6 ps 2.2 lw 2 lc rgb 'black' title 'Tolkowsky 1919', \\\n"
-      << "      'gem_cuts_marks.dat' index 1 using 1:2:(0) with points nocontours pt 5 ps 0.9 lc rgb 'black' title 'GIA default', \\\n"
-      << "      'gem_cuts_best_marks.dat' index " << k
-      << " using 1:2:(0) with points nocontours pt 3 ps 2 lw 2 lc rgb 'blue' title 'best in the grid'\n";
+      << "set title \"" << m.title << (m.maximise ? "" : " (smaller is better)") << "\\n{/=9 "
+      << (shared ? "circle: Tolkowsky 1919 and GIA default (the same crown and pavilion)"
+                 : "circle: Tolkowsky 1919, square: GIA default")
+      << ", star: best in the grid" << (r.impossible > 0 ? ", blank: impossible cut" : "") << "}\"\n"
+      << "set xrange [" << sw::number(frame.x0) << ":" << sw::number(frame.x1) << "]\nset yrange ["
+      << sw::number(frame.y0) << ":" << sw::number(frame.y1) << "]\n"
+      // Cells 2 % wider than the grid step: no seams between them.
+      << "plot 'gem_cuts_map.dat' using 1:2:(" << sw::number(1.02 * axis_half_step(ax)) << "):("
+      << sw::number(1.02 * axis_half_step(ay)) << "):" << col << " with boxxyerror fs solid 1.0 noborder fc palette";
+    if (lv.count > 0)
+        b << next << "$contours using 1:2 with lines lc rgb 'white' lw 2.2" << next
+          << "$contours using 1:2 with lines lc rgb 'black' lw 0.8";
+    b << next << "'gem_cuts_marks.dat' index 0 using 1:2 with points pt 7 ps 2.2 lc rgb 'white'" << next
+      << "'gem_cuts_marks.dat' index 0 using 1:2 with points pt 6 ps 2.2 lw 2 lc rgb 'black'";
+    if (!shared)
+        b << next << "'gem_cuts_marks.dat' index 1 using 1:2 with points pt 5 ps 1.4 lc rgb 'white'" << next
+          << "'gem_cuts_marks.dat' index 1 using 1:2 with points pt 5 ps 0.9 lc rgb 'black'";
+    b << next << "'gem_cuts_best_marks.dat' index " << k << " using 1:2 with points pt 3 ps 2.2 lw 5 lc rgb 'white'"
+      << next << "'gem_cuts_best_marks.dat' index " << k << " using 1:2 with points pt 3 ps 2 lw 2 lc rgb 'black'\n";
     return b.str();
 }
 
@@ -124,8 +194,8 @@ void write(const Result& r, const std::string& dir) {
       << num(gia.cut.crown_angle) << "°, pavilion " << num(gia.cut.pavilion_angle) << "°, table " << num(gia.cut.table)
       << " %).\n\n"
       << "## Where each metric is best, and Tolkowsky's distance from it\n\n"
-      << "Contour maps `gem_cuts_METRIC.png` / `.pdf` (crown angle × pavilion angle, the other parameters the GIA default; open circle Tolkowsky, "
-      << "black square GIA default " << marks_text(r) << ", blue star the grid's best). The grid's best value is the largest of many "
+      << "Contour maps `gem_cuts_METRIC.png` / `.pdf` (crown angle × pavilion angle, the other parameters the GIA default; circle Tolkowsky, "
+      << "square GIA default " << marks_text(r) << (r.findings.presets_share_angles ? ", drawn as one circle" : "") << ", star the grid's best; viridis colour scale over the range the cuts span, contours at round levels, labelled). The grid's best value is the largest of many "
       << "noisy cells and so biased towards better; the difference is given in combined standard errors.\n\n"
       << "| metric | best crown | best pavilion | best value ± error | Tolkowsky ± error | Δcrown | Δpavilion | "
          "difference / σ |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";

@@ -1,8 +1,10 @@
 #include <refract/experiments/plot.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -199,6 +201,36 @@ void gnuplot_figure(const std::string& dir, const std::string& name, const std::
             throw std::runtime_error(std::string(e.what()) + " (cannot rename the figure into place)");
         }
     }
+}
+
+std::string viridis_palette() {
+    return "set palette defined (0 '#440154', 0.0625 '#48186a', 0.125 '#472d7b', 0.1875 '#424086', "
+           "0.25 '#3b528b', 0.3125 '#33638d', 0.375 '#2c728e', 0.4375 '#26828e', 0.5 '#21918c', "
+           "0.5625 '#1fa088', 0.625 '#28ae80', 0.6875 '#3fbc73', 0.75 '#5ec962', 0.8125 '#84d44b', "
+           "0.875 '#addc30', 0.9375 '#d8e219', 1 '#fde725')";
+}
+
+ContourLevels round_contour_levels(double lo, double hi, int max_levels) {
+    if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || max_levels < 1)
+        throw std::logic_error("round_contour_levels: needs finite lo < hi and max_levels >= 1");
+    const double decade = std::pow(10.0, std::floor(std::log10(hi - lo)) - 2);
+    for (int e = 0; e < 5; ++e)
+        for (double m : {1.0, 2.0, 2.5, 5.0}) {
+            const double step = m * decade * std::pow(10.0, e);
+            // Strictly inside (lo, hi), with a tolerance for lo or hi on a level.
+            const double first = std::floor(lo / step + 1e-9) + 1, last = std::ceil(hi / step - 1e-9) - 1;
+            const int count = static_cast<int>(last - first) + 1;
+            if (count > max_levels) continue;
+            ContourLevels c;
+            c.step = step;
+            c.start = first * step;
+            c.end = last * step;
+            c.count = std::max(count, 0);
+            const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9))) + (m == 2.5 ? 1 : 0);
+            c.format = "%." + std::to_string(decimals) + "f";
+            return c;
+        }
+    throw std::logic_error("round_contour_levels: no step found");  // unreachable: 10^(e+log) covers the range
 }
 
 void image_grid_figure(const std::string& dir, const std::string& name, int rows, int cols,

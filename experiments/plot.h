@@ -53,6 +53,21 @@ void image_grid_figure(const std::string& dir, const std::string& name, int rows
                        const std::vector<Panel>& panels, const std::string& title, double aspect_h_over_w = 1.0,
                        int panel_px = 260);
 
+// Colour maps for gnuplot figures: `set palette defined (...)` lines of perceptually uniform
+// maps (matplotlib's viridis, 17 stops; lightness rises monotonically, readable in grey and
+// by colour-blind readers).
+std::string viridis_palette();
+
+// Contour levels at round values for data within [lo, hi]: a step of 1, 2, 2.5 or 5 × 10^k,
+// the smallest giving at most `max_levels` levels strictly inside (lo, hi); `format` is the
+// printf format that labels them (as many decimals as the step needs). lo < hi, finite.
+struct ContourLevels {
+    double start = 0, step = 1, end = 0;
+    int count = 0;
+    std::string format;  // "%.2f"
+};
+ContourLevels round_contour_levels(double lo, double hi, int max_levels = 6);
+
 // True when a gnuplot executable is found on PATH.
 bool gnuplot_available();
 

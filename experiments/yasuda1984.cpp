@@ -399,10 +399,13 @@ void write(const Result& res, const std::string& dir) {
         std::ostringstream b;
         b << "set datafile separator ','\nset key top left box opaque\n"
           << "set xlabel 'angle of incidence (degrees)'\nset ylabel 'reflectivity'\n"
-          << "set xrange [0:90]\nset yrange [0:1]\nset xtics 10\nset mxtics 2\nset ytics 0.1\nset grid\n"
+          << "set xrange [0:90]\nset yrange [0:1]\nset xtics 10 nomirror\nset mxtics 2\nset ytics 0.1\nset grid\n"
           << "set title 'Fig. 4  Angle of incidence dependence of reflectivity (n = 1.5)'\n"
-          << "set arrow from " << brewster << ",0 to " << brewster << ",0.25 nohead dt 3 lc rgb 'gray40'\n"
-          << "set label sprintf('Brewster %.2f°', " << brewster << ") at " << brewster + 1 << ",0.2\n"
+          // Brewster's angle: a dotted line through the plot, labelled as a tic on the top
+          // border, where no curve runs.
+          << "set arrow from " << brewster << ",0 to " << brewster << ",1 nohead dt 3 lc rgb 'gray40'\n"
+          << "set x2range [0:90]\nset x2tics (sprintf('Brewster %.2f°', " << brewster << ") " << brewster
+          << ") scale 0 offset 0,-0.3 font ',10'\nset tmargin 4\n"
           << "plot 'fig4.csv' using 1:2 every ::1 with lines lw 2 lc rgb '#1f77b4' title 'R_s (s-polarised)', \\\n"
           << "     '' using 1:3 every ::1 with lines lw 2 lc rgb '#d62728' title 'R_p (p-polarised)', \\\n"
           << "     '' using 1:4 every ::1 with lines lw 3 lc rgb 'black' title 'R = (R_s + R_p)/2 (eq. 7)'\n";
