@@ -25,6 +25,7 @@ struct Args {
     int rays = 4096, wavelengths = 31, threads = 0;
     std::uint64_t seed = 1;
     bool quiet = false;
+    bool old_spelling = false;  // --polarisation given (deprecated here)
 };
 
 sw::Sweep make_sweep(const Args& a) {
@@ -181,16 +182,20 @@ refract::cli::Registrar reg{35, [](CLI::App& app) {
            "--polarisation",
            [a](const std::string& v) {
                a->polarisation = v;
+               a->old_spelling = true;
                std::cerr << "refract sweep: --polarisation is deprecated here (in trace it is a light state); "
                             "use --polarisation-model\n";
            })
-        ->group("")
-        ->excludes(model);
+        ->group("");
     sub->add_option("--seed", a->seed, "Base seed (each cut's seed derives from it and the cut's parameters)")
         ->check(CLI::NonNegativeNumber);
     sub->add_option("--threads", a->threads, "Worker threads per process (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quiet", a->quiet, "No progress line");
-    sub->callback([a] { run(*a); });
+    sub->callback([a, model] {
+        if (a->old_spelling && model->count() > 0)
+            throw refract::InputError("--polarisation: give --polarisation-model alone");
+        run(*a);
+    });
 }};
 
 }  // namespace

@@ -191,7 +191,7 @@ TEST_CASE("farfield reports the share absorbed inside an absorbing glass (0 for 
         const fs::path scene = dir / ("s" + std::to_string(k) + ".json"), out = dir / ("ff" + std::to_string(k));
         std::ofstream(scene) << beam_scene(k ? 0.5 : 0.0);
         const std::string cmd = std::string(REFRACT_EXE) + " farfield " + scene.string() + " -o " + out.string() +
-                                " --binning axis --photons 4000 --threads 0 --no-plot >" + (dir / "stdout.txt").string() +
+                                " --binning axis --photons 4000 --wavelengths 550 --threads 0 --no-plot >" + (dir / "stdout.txt").string() +
                                 " 2>&1";
         REQUIRE(std::system(cmd.c_str()) == 0);
         const auto t = refract::experiments::read_csv((out / "far_field_summary.csv").string());
