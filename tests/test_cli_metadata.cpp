@@ -85,7 +85,7 @@ TEST_CASE("Chromaticities of the default pipeline: the CIE 1931 RGB primaries an
 }
 
 TEST_CASE("render writes into its EXR header the chromaticities, version, scene name and hash, integrator, samples, "
-          "seed and command line; the pixels do not change",
+          "seed and command line, and the pixels do not change",
           "[cli][outputs]") {
     const fs::path dir = fresh_dir("exr");
     std::ofstream(dir / "s.json") << kSphere;
@@ -166,7 +166,7 @@ TEST_CASE("sweep: the CSV gains the ASET shares and the energy balance, and its 
     fs::remove_all(dir);
 }
 
-TEST_CASE("sweep: --polarisation-model names the model; the old --polarisation is accepted with one deprecation line",
+TEST_CASE("sweep: --polarisation-model names the model, and the old --polarisation is accepted with one deprecation line",
           "[cli][outputs][gem]") {
     const fs::path dir = fresh_dir("polmodel");
     const std::string sweep = "sweep brilliant --crown-angle 34 --rays 16 --wavelengths 3 --threads 1 --quiet -o ";
@@ -240,7 +240,7 @@ TEST_CASE("experiment needs -o (no default ./out/NAME) and says so in its help, 
     fs::remove_all(dir);
 }
 
-TEST_CASE("The progress line: done / total, percent, elapsed and the time left; elapsed only without a total",
+TEST_CASE("The progress line: done / total, percent, elapsed and the time left, and elapsed only without a total",
           "[outputs]") {
     CHECK(refract::progress_line("render", "tiles", 30, 120, 3.0) ==
           "render: 30 / 120 tiles (25%), 3.0 s elapsed, about 9.0 s left");
