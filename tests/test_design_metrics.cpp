@@ -93,7 +93,7 @@ TEST_CASE("The round brilliant written as a design measures as the brilliant, wi
         CHECK(std::abs(a.value - c.value) < 4 * std::hypot(a.error, c.error));
 }
 
-TEST_CASE("A tier sweep varies the angle of every tier of one name on its side; unknown names, names on both "
+TEST_CASE("A tier sweep varies the angle of every tier of one name on its side, and unknown names, names on both "
           "sides and angles beyond 90 degrees are refused naming --tier",
           "[gem][design-metrics]") {
     const GemcadDesign d = read_gemcad(design_path("princess"));
@@ -127,7 +127,7 @@ TEST_CASE("A tier sweep varies the angle of every tier of one name on its side; 
 }
 
 TEST_CASE("refract metrics and refract sweep design on the command line: the metrics as JSON, the ASET image, "
-          "the sweep's CSV; a bad tier exits 2 with one line",
+          "the sweep's CSV, and a bad tier exits 2 with one line",
           "[gem][design-metrics][cli]") {
     const fs::path dir = test::fresh_dir("design-metrics", "cli");
     const std::string oval = design_path("oval");

@@ -60,7 +60,7 @@ double cell(const Csv& t, size_t row, const std::string& column) {
 }
 
 // The repository's scenes/ directory, found from this source file.
-fs::path repo_scenes() { return fs::path(__FILE__).parent_path().parent_path() / "scenes"; }
+fs::path repo_scenes() { return fs::path(REFRACT_SOURCE_DIR) / "scenes"; }
 
 std::string read_text(const fs::path& p) {
     std::ifstream in(p);

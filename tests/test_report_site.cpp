@@ -110,7 +110,7 @@ TEST_CASE("the report has a page per section with navigation, the summary as HTM
     fs::remove_all(out);
 }
 
-TEST_CASE("refract report: a results directory gets its pages; a missing or empty one is refused with one line, "
+TEST_CASE("refract report: a results directory gets its pages, and a missing or empty one is refused with one line, "
           "nothing written") {
     const fs::path dir = refract::test::fresh_dir("report", "cli");
     refract::test::check_refused(refract::test::run("report " + (dir / "none").string(), dir), "none: not a directory");

@@ -88,7 +88,7 @@ struct TempDir {
     }
 };
 
-fs::path source_scenes() { return fs::path(__FILE__).parent_path().parent_path() / "scenes" / "validation"; }
+fs::path source_scenes() { return fs::path(REFRACT_SOURCE_DIR) / "scenes" / "validation"; }
 
 }  // namespace
 
