@@ -186,9 +186,6 @@ def test_documented_trace_figures_are_within_2x_of_the_benchmark(source_dir):
         "trace_speed", os.path.join(source_dir, "python", "benchmarks", "trace_speed.py"))
     bench = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(bench)
-    lines = []
-    bench.main(quick=True, rounds=3, out=lines.append)
-    run = "\n".join(lines)
     with open(os.path.join(source_dir, "docs", "python.md")) as f:
         doc = f.read()
 
@@ -196,6 +193,18 @@ def test_documented_trace_figures_are_within_2x_of_the_benchmark(source_dir):
         m = re.search(re.escape(label) + r"[^\n]*best ([0-9.]+)", text)
         assert m, (label, text)
         return float(m.group(1))
-    for label in ("refract.trace, one ray:", "refract.trace_rays, one thread:"):
+    labels = ("refract.trace, one ray:", "refract.trace_rays, one thread:")
+
+    def within(run):
+        return all(0.5 * best(doc, l) <= best(run, l) <= 2 * best(doc, l) for l in labels)
+    # A loaded machine (ctest -j, other processes) can slow one short run past 2x: the
+    # figures count as kept when one of three runs is within 2x.
+    for _ in range(3):
+        lines = []
+        bench.main(quick=True, rounds=3, out=lines.append)
+        run = "\n".join(lines)
+        if within(run):
+            break
+    for label in labels:
         documented, measured = best(doc, label), best(run, label)
         assert 0.5 * documented <= measured <= 2 * documented, (label, documented, measured, run)
