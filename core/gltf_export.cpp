@@ -175,27 +175,39 @@ struct Writer {
     void object(const Object& o, std::set<std::string>& names) {
         const std::string item = "object '" + clip_echo(o.name) + "'";
         const Shape& local = o.placement ? *o.placement->local : o.shape;
-        std::optional<TriangleMesh> tris;
-        if (const auto* s = std::get_if<Sphere>(&local)) {
-            warn(item, "sphere tessellated (" + std::to_string(20 << (2 * kSphereSubdivisions)) + " triangles)" +
-                           (s->radius < 0 ? ", hollow sphere exported as solid" : ""));
-            tris = icosphere(kSphereSubdivisions, s->center, std::fabs(s->radius));
-        } else if (std::holds_alternative<Plane>(local)) {
-            warn(item, "infinite plane not exported (glTF holds bounded meshes)");
-            return;
-        } else if (const auto* c = std::get_if<ConvexPolyhedron>(&local)) {
-            tris = mesh_of(*c);
-            if (tris->triangles.empty()) {
-                warn(item, "unbounded polyhedron not exported");
-                return;
+        // The triangles of each shape kind (one overload per kind, visited exhaustively: a new
+        // kind without one does not compile); null: not exported, with its warning.
+        TriangleMesh made;
+        struct Triangles {
+            Writer& ex;
+            const std::string& item;
+            TriangleMesh& made;
+            const TriangleMesh* operator()(const Sphere& s) const {
+                ex.warn(item, "sphere tessellated (" + std::to_string(20 << (2 * kSphereSubdivisions)) + " triangles)" +
+                                  (s.radius < 0 ? ", hollow sphere exported as solid" : ""));
+                made = icosphere(kSphereSubdivisions, s.center, std::fabs(s.radius));
+                return &made;
             }
-        }
+            const TriangleMesh* operator()(const Plane&) const {
+                ex.warn(item, "infinite plane not exported (glTF holds bounded meshes)");
+                return nullptr;
+            }
+            const TriangleMesh* operator()(const ConvexPolyhedron& c) const {
+                made = mesh_of(c);
+                if (!made.triangles.empty()) return &made;
+                ex.warn(item, "unbounded polyhedron not exported");
+                return nullptr;
+            }
+            const TriangleMesh* operator()(const TriangleMesh& m) const { return &m; }
+        };
+        const TriangleMesh* tris = std::visit(Triangles{*this, item, made}, local);
+        if (!tris) return;
         const std::string name = unique(names, o.name);
         const int mat = material(o.material);
         const std::pair<const Shape*, int> key{o.placement ? o.placement->local.get() : &o.shape, mat};
         auto it = shared.find(key);
         if (it == shared.end())
-            it = shared.emplace(key, mesh(tris ? *tris : std::get<TriangleMesh>(local), mat, name)).first;
+            it = shared.emplace(key, mesh(*tris, mat, name)).first;
         json n = {{"name", name}, {"mesh", it->second}};
         if (o.placement) n["matrix"] = matrix(o.placement->transform.linear, o.placement->transform.translation);
         nodes.push_back(n);

@@ -10,6 +10,7 @@
 
 #include <refract/core/threads.h>
 #include <refract/experiments/gem_observation.h>
+#include <refract/experiments/plot.h>
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
 
@@ -171,19 +172,6 @@ std::vector<TierRow> run(const TierSweep& sweep, int threads, const std::functio
     return rows;
 }
 
-namespace {
-// A CSV cell: quoted when it holds a comma or a quote (quotes doubled, newlines dropped).
-std::string cell(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (const char c : s) {
-        if (c == '\n') continue;
-        q += c;
-        if (c == '"') q += '"';
-    }
-    return q + "\"";
-}
-}  // namespace
 
 std::string csv_text(const TierSweep& sweep, const std::vector<TierRow>& rows) {
     using gem_sweep::number;
@@ -191,11 +179,11 @@ std::string csv_text(const TierSweep& sweep, const std::vector<TierRow>& rows) {
         "index,tier,angle,status,reason,facets,volume,length_over_width,height_over_width,"
         "light_return,light_return_error,fire,fire_error,leakage,leakage_error,scintillation,scintillation_error,"
         "aset_red,aset_green,aset_blue,aset_white\n";
-    const std::string tier = cell(sweep.name);
+    const std::string tier = csv_quote(sweep.name);
     for (const TierRow& r : rows) {
         s += std::to_string(r.index) + "," + tier + "," + number(r.angle);
         if (!r.possible) {
-            s += ",impossible," + cell(r.reason) + std::string(16, ',') + "\n";
+            s += ",impossible," + csv_quote(r.reason) + std::string(16, ',') + "\n";
             continue;
         }
         const DesignGem& g = r.stone;

@@ -1,19 +1,9 @@
 // The sweep's CSV cells (experiments/gem_sweep.h): one field list for the header and the lines.
 #include <refract/experiments/gem_sweep.h>
+#include <refract/experiments/plot.h>
 
 namespace refract::experiments::gem_sweep {
 namespace {
-
-std::string csv_quote(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (const char c : s) {
-        if (c == '\n') continue;
-        q += c;
-        if (c == '"') q += '"';
-    }
-    return q + "\"";
-}
 
 #define REFRACT_NUMBER(NAME, EXPR) Field{NAME, [](const Row& r) { return number(EXPR); }}
 

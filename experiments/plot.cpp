@@ -53,6 +53,17 @@ std::string fmt(double v) { return format_shortest(v); }  // geometry/format.h
 
 std::string fmt(double v, int significant) { return format_significant(v, significant); }
 
+std::string csv_quote(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (const char c : s) {
+        if (c == '\n') continue;
+        q += c;
+        if (c == '"') q += '"';
+    }
+    return q + "\"";
+}
+
 std::string Csv::text() const {
     std::string s;
     auto line = [&s](const std::vector<std::string>& cells) {

@@ -16,6 +16,9 @@ void write_text_atomic(const std::string& path, const std::string& text);
 // fewest digits that read back to the same double).
 std::string fmt(double v);
 std::string fmt(double v, int significant);  // fixed number of significant digits
+// A CSV cell from text: quoted when it holds a comma or a quote (quotes doubled, newlines
+// dropped), as it is otherwise.
+std::string csv_quote(const std::string& s);
 
 // A CSV table: a header and rows of cells (already formatted).
 struct Csv {
