@@ -137,7 +137,7 @@ LawTerms sellmeier_terms(double l, const double* B, const double* C, int terms) 
     LawTerms r;  // Sellmeier: n² = 1 + Σ B_i λ²/(λ² − C_i)
     r.squared = true;
     r.add(1.0);
-    for (int i = 0; i < terms; ++i) r.add(B[i] * l2 / (l2 - C[i]));
+    for (int i = 0; i < terms; ++i) r.add(sellmeier_term(l2, B[i], C[i]));
     return r;
 }
 
@@ -210,17 +210,36 @@ std::vector<double> Dispersion::indices(const std::vector<double>& wl) const {
     return r;
 }
 
-double Dispersion::nominal() const {
-    if (const auto* c = std::get_if<ConstantIndex>(&model)) return c->n;
-    if (const auto* p = std::get_if<PovRayModel>(&model)) return p->ior;
-    return n(fraunhofer::d);
-}
+// Per model: the index where one index is needed, and whether it disperses — one overload
+// each, so a model that lacks one does not compile.
+namespace {
+struct NominalOf {
+    const Dispersion& d;
+    double operator()(const ConstantIndex& c) const { return c.n; }
+    double operator()(const PovRayModel& p) const { return p.ior; }  // POV-Ray's Fresnel uses it
+    double operator()(const CauchyModel&) const { return at_d(); }
+    double operator()(const SellmeierModel&) const { return at_d(); }
+    double operator()(const AbbeModel&) const { return at_d(); }
+    double operator()(const MoissaniteFormModel&) const { return at_d(); }
+    double operator()(const FormulaModel&) const { return at_d(); }
+    double operator()(const TabulatedModel&) const { return at_d(); }
+    double at_d() const { return d.n(fraunhofer::d); }
+};
+struct DispersiveOf {
+    bool operator()(const ConstantIndex&) const { return false; }
+    bool operator()(const PovRayModel& p) const { return p.dispersion != 1.0; }
+    bool operator()(const CauchyModel&) const { return true; }
+    bool operator()(const SellmeierModel&) const { return true; }
+    bool operator()(const AbbeModel&) const { return true; }
+    bool operator()(const MoissaniteFormModel&) const { return true; }
+    bool operator()(const FormulaModel&) const { return true; }
+    bool operator()(const TabulatedModel&) const { return true; }
+};
+}  // namespace
 
-bool Dispersion::dispersive() const {
-    if (std::holds_alternative<ConstantIndex>(model)) return false;
-    if (const auto* p = std::get_if<PovRayModel>(&model)) return p->dispersion != 1.0;
-    return true;
-}
+double Dispersion::nominal() const { return std::visit(NominalOf{*this}, model); }
+
+bool Dispersion::dispersive() const { return std::visit(DispersiveOf{}, model); }
 
 double Dispersion::abbe_number() const {
     return (n(fraunhofer::d) - 1.0) / (n(fraunhofer::F) - n(fraunhofer::C));

@@ -45,6 +45,9 @@ struct LawTerms {
     double sum() const;    // left to right
     double index() const;  // the sum, its square root, or n from the Lorentz–Lorenz sum
 };
+// One Sellmeier resonance (Sellmeier 1871): B λ²/(λ² − C), from λ² (µm²) and C (µm²); the
+// catalogue's Sellmeier law and refractiveindex.info's formulas 1 and 2 sum these.
+inline double sellmeier_term(double lambda2_um2, double B, double C) { return B * lambda2_um2 / (lambda2_um2 - C); }
 LawTerms cauchy_terms(double lambda_um, double A, double B, double C);
 LawTerms sellmeier_terms(double lambda_um, const double* B, const double* C, int terms);
 LawTerms moissanite_form_terms(double lambda_um, double A, double B, double C, double D);

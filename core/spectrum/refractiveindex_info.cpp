@@ -43,7 +43,7 @@ LawTerms formula_terms(const FormulaModel& m, double l) {
             r.add(C(1));
             for (size_t i = 2; i + 1 <= n; i += 2) {
                 const double pole = m.formula == 1 ? C(i + 1) * C(i + 1) : C(i + 1);
-                r.add(C(i) * l2 / (l2 - pole));
+                r.add(sellmeier_term(l2, C(i), pole));
             }
             break;
         case 3:  // n² = C1 + Σ C_i λ^C_{i+1}
@@ -77,7 +77,7 @@ LawTerms formula_terms(const FormulaModel& m, double l) {
         case 8:  // (n² − 1)/(n² + 2) = C1 + C2 λ²/(λ² − C3) + C4 λ²
             r.lorentz_lorenz = true;
             r.add(C(1));
-            r.add(C(2) * l2 / (l2 - C(3)));
+            r.add(sellmeier_term(l2, C(2), C(3)));
             r.add(C(4) * l2);
             break;
         case 9: {  // n² = C1 + C2/(λ² − C3) + C4 (λ − C5)/((λ − C5)² + C6)
