@@ -92,7 +92,7 @@ void grin(int rounds) {
                 evaluations += r.evaluations;
                 sink += r.exit_point.x();
             }
-            ray_rate.push_back(evaluations / (thread_cpu_seconds() - t0));
+            ray_rate.push_back(static_cast<double>(evaluations) / (thread_cpu_seconds() - t0));
         }
         std::printf("  %-30s %6.1f M/s alone, %6.1f M/s in the ray equation%s\n", c.name.c_str(), median(rate) / 1e6,
                     median(ray_rate) / 1e6, sink == 12345.678 ? " " : "");

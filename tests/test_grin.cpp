@@ -163,7 +163,7 @@ namespace {
 // Least-squares slope of log y against log x.
 double log_slope(const std::vector<double>& x, const std::vector<double>& y) {
     double mx = 0, my = 0;
-    for (size_t i = 0; i < x.size(); ++i) mx += std::log(x[i]) / x.size(), my += std::log(y[i]) / y.size();
+    for (size_t i = 0; i < x.size(); ++i) mx += std::log(x[i]) / double(x.size()), my += std::log(y[i]) / double(y.size());
     double sxy = 0, sxx = 0;
     for (size_t i = 0; i < x.size(); ++i) {
         sxy += (std::log(x[i]) - mx) * (std::log(y[i]) - my);

@@ -172,7 +172,7 @@ Result advance(const Profile& profile, const Region& region, const Vec3& x0, con
     double h = fixed ? s.fixed_step : initial_step(f, y, k1, s);
     // On the boundary: within 1e-14 of the region's size (or of the coordinates, past it).
     const double scale = length_scale(region);
-    auto boundary_tol = [scale](const State& y) { return 1e-14 * (scale + y.head<3>().cwiseAbs().maxCoeff()); };
+    auto boundary_tol = [scale](const State& ys) { return 1e-14 * (scale + ys.head<3>().cwiseAbs().maxCoeff()); };
     if (s.record_path) res.path.push_back(sample(y));
     bool just_rejected = false;
     double err_old = 1e-4;
