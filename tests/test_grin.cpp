@@ -285,3 +285,22 @@ TEST_CASE("A GRIN base index disperses by Cauchy's law while a fish-eye's rays d
     CHECK((blue.exit_point - red.exit_point).norm() < 1e-10);
     CHECK(blue.optical_path / red.optical_path == Approx((1.9 + 0.02 / 0.16) / (1.9 + 0.02 / 0.49)).epsilon(1e-10));
 }
+
+TEST_CASE("A GRIN ray ends exactly on the region's boundary, and one started on it heading out leaves at once", "[grin]") {
+    const Profile rod = ParabolicRod{Vec3::Zero(), Vec3::UnitZ(), {1.5, 0.0}, 0.5};
+    const Region box = Box{Vec3(-1, -1, 0), Vec3(1, 1, 3)};
+    for (double theta : {0.1, 0.4, 0.8})
+        for (double phi : {0.3, 2.0}) {
+            const Result r = advance(rod, box, Vec3(0.2, -0.1, 0), unit(theta, phi), kLambda, tol(1e-10));
+            REQUIRE(r.status == Status::left_region);
+            CHECK(std::abs(signed_distance(box, r.exit_point)) <= 1e-13);
+            CHECK(std::abs(r.exit_dir.norm() - 1) <= 1e-15);
+            CHECK(r.exit_index == Approx(index(rod, r.exit_point, kLambda)).epsilon(1e-15));
+            CHECK(r.optical_path > r.length);  // n > 1 throughout
+        }
+    // On the sphere's surface heading outwards: the exit is the start, after no length.
+    const Result out = advance(Luneburg{}, Sphere{}, Vec3(0, 0, 1), Vec3(0.3, 0, 1).normalized(), kLambda);
+    CHECK(out.status == Status::left_region);
+    CHECK((out.exit_point - Vec3(0, 0, 1)).norm() <= 1e-13);
+    CHECK(out.length <= 1e-13);
+}
