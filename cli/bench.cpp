@@ -37,7 +37,7 @@ struct Args {
     int polarisation_pairs = 0;
     int birefringence_pairs = 0;
     bool kernels = false, meshes = false, objects = false, sweep = false, mesh_file = false;
-    bool trace = false, trace_quick = false;
+    bool trace = false, trace_quick = false, grin = false;
     int sweep_rays = 0;
     std::string rtiow;
     int rounds = 0;  // 0: 5 for --kernels / --meshes, 3 for the diamond
@@ -306,6 +306,9 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     sub->add_flag("--trace", a->trace,
                   "Only ray queries on the 1998 diamond: one ray's record (trace) and trace_rays, one thread and all");
     sub->add_flag("--trace-quick", a->trace_quick, "With --trace: fewer calls and rays (seconds)");
+    sub->add_flag("--grin", a->grin,
+                  "Only gradient-index media: index-and-gradient evaluations per second per profile, adaptive against "
+                  "fixed steps");
     sub->add_option("--rounds", a->rounds, "Paired rounds (5; the diamond: 3)")->check(CLI::Range(0, 100));
     sub->callback([a] {
         using namespace refract;
@@ -313,7 +316,8 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
         // on one terminal the result lines themselves show the progress.
         Progress progress("bench", "", 0, cli::stderr_is_terminal() && isatty(STDOUT_FILENO) == 0);
         a->threads = worker_threads(a->threads);
-        if (a->kernels || a->meshes || a->objects || a->sweep || a->mesh_file || a->trace || !a->rtiow.empty()) {
+        if (a->kernels || a->meshes || a->objects || a->sweep || a->mesh_file || a->trace || a->grin || !a->rtiow.empty()) {
+            if (a->grin) cli::bench::grin(a->rounds > 0 ? a->rounds : 5);
             if (a->trace) cli::bench::trace(a->rounds > 0 ? a->rounds : 5, a->trace_quick);
             if (a->mesh_file) cli::bench::mesh_file();
             if (a->sweep) cli::bench::sweep(a->threads, a->sweep_rays);

@@ -41,4 +41,9 @@ void sweep(int threads, int rays);
 // `quick`: fewer calls and rays (the test of the documented figures).
 void trace(int rounds, bool quick);
 
+// Gradient-index media: each profile's index-and-gradient evaluations per second on one
+// thread, alone and inside the ray equation, and adaptive against fixed steps at the same
+// error (docs/grin.md).
+void grin(int rounds);
+
 }  // namespace refract::cli::bench

@@ -1,0 +1,246 @@
+// The ray equation by Dormand–Prince 5(4) (core/grin/ray_equation.h; docs/grin.md).
+//
+// An own integrator rather than Boost.Odeint's runge_kutta_dopri5: the walker needs the
+// step's dense output to find the boundary crossing inside a step, a step budget, the
+// evaluation count and, later, one ray per SIMD lane; each of those is a wrapper around
+// Odeint's steppers, while the whole method is the ~150 lines below (docs/grin.md).
+#include <refract/core/grin/ray_equation.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace refract::grin {
+
+namespace {
+
+// y = (r, T, optical path, length); y′ = (T, n∇n, n², n) with ′ = d/dt, dt = ds/n.
+using State = Eigen::Matrix<double, 8, 1>;
+
+struct Rhs {
+    const Profile& profile;
+    double lambda_um;
+    long evaluations = 0;
+    State operator()(const State& y) {
+        ++evaluations;
+        const IndexGradient g = index_and_gradient(profile, Vec3(y.head<3>()), lambda_um);
+        State f;
+        f.head<3>() = y.segment<3>(3);
+        f.segment<3>(3) = g.n * g.grad;
+        f[6] = g.n * g.n;
+        f[7] = g.n;
+        return f;
+    }
+};
+
+// Dormand & Prince (1980), the tableau of RK5(4)7M; e = b − b̂ (the error estimate's weights).
+constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+constexpr double a21 = 1.0 / 5;
+constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
+constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
+                 a65 = -5103.0 / 18656;
+constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784, a76 = 11.0 / 84;
+constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200, e6 = 22.0 / 525,
+                 e7 = -1.0 / 40;
+// The dense output of order 4 (Hairer's DOPRI5, CONTD5).
+constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
+                 d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
+                 d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+
+// One step of size h from y0 with k1 = f(y0): the new state, its derivative k7 (FSAL: the
+// next step's k1), the error estimate and the dense output's coefficients.
+struct Step {
+    State y1, k7, err;
+    std::array<State, 5> cont;  // y(θ) = c0 + θ(c1 + (1−θ)(c2 + θ(c3 + (1−θ) c4)))
+
+    State at(double th) const {
+        const double th1 = 1.0 - th;
+        return cont[0] + th * (cont[1] + th1 * (cont[2] + th * (cont[3] + th1 * cont[4])));
+    }
+};
+
+Step dp_step(Rhs& f, const State& y0, const State& k1, double h) {
+    const State k2 = f(y0 + h * (a21 * k1));
+    const State k3 = f(y0 + h * (a31 * k1 + a32 * k2));
+    const State k4 = f(y0 + h * (a41 * k1 + a42 * k2 + a43 * k3));
+    const State k5 = f(y0 + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4));
+    const State k6 = f(y0 + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5));
+    Step s;
+    s.y1 = y0 + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
+    s.k7 = f(s.y1);
+    s.err = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * s.k7);
+    const State dy = s.y1 - y0, bspl = h * k1 - dy;
+    s.cont[0] = y0;
+    s.cont[1] = dy;
+    s.cont[2] = bspl;
+    s.cont[3] = dy - h * s.k7 - bspl;
+    s.cont[4] = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * s.k7);
+    (void)c2, (void)c3, (void)c4, (void)c5;  // the nodes, implied by the rows of a
+    return s;
+}
+
+double error_norm(const State& err, const State& y0, const State& y1, const Settings& s) {
+    double m = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        const double sc = s.abs_tol + s.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
+        const double e = std::abs(err[i]) / sc;
+        if (!(e <= m)) m = e;  // NaN too
+    }
+    return std::isfinite(m) ? m : std::numeric_limits<double>::infinity();
+}
+
+// The first step (Hairer, Nørsett & Wanner, §II.4, "starting step size").
+double initial_step(Rhs& f, const State& y0, const State& k1, const Settings& s) {
+    auto norm = [&](const State& v) {
+        double m = 0.0;
+        for (int i = 0; i < 8; ++i) m = std::max(m, std::abs(v[i]) / (s.abs_tol + s.rel_tol * std::abs(y0[i])));
+        return m;
+    };
+    const double dn0 = norm(y0), dn1 = norm(k1);
+    const double h0 = (dn0 < 1e-5 || dn1 < 1e-5) ? 1e-6 : 0.01 * dn0 / dn1;
+    const State k2 = f(y0 + h0 * k1);
+    const double dn2 = norm(k2 - k1) / h0, dm = std::max(dn1, dn2);
+    const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 0.2);
+    return std::min(100.0 * h0, h1);
+}
+
+// Brent's method (Brent 1973, "zero"): a root of g in [a, b] with g(a) ≤ 0 < g(b), to tol.
+template <class G>
+double brent(G&& g, double a, double b, double fa, double fb, double tol) {
+    double c = a, fc = fa, d = b - a, e = d;
+    for (int it = 0; it < 200; ++it) {
+        if ((fb > 0) == (fc > 0)) {
+            c = a, fc = fa, d = b - a, e = d;
+        }
+        if (std::abs(fc) < std::abs(fb)) {
+            a = b, b = c, c = a;
+            fa = fb, fb = fc, fc = fa;
+        }
+        const double t = 2 * std::numeric_limits<double>::epsilon() * std::abs(b) + 0.5 * tol, m = 0.5 * (c - b);
+        if (std::abs(m) <= t || fb == 0) return b;
+        if (std::abs(e) >= t && std::abs(fa) > std::abs(fb)) {
+            double p, q, s = fb / fa;
+            if (a == c) {
+                p = 2 * m * s, q = 1 - s;
+            } else {
+                const double qq = fa / fc, r = fb / fc;
+                p = s * (2 * m * qq * (qq - r) - (b - a) * (r - 1));
+                q = (qq - 1) * (r - 1) * (s - 1);
+            }
+            if (p > 0) q = -q;
+            else p = -p;
+            if (2 * p < std::min(3 * m * q - std::abs(t * q), std::abs(e * q))) {
+                e = d, d = p / q;
+            } else {
+                d = m, e = m;
+            }
+        } else {
+            d = m, e = m;
+        }
+        a = b, fa = fb;
+        b += std::abs(d) > t ? d : (m > 0 ? t : -t);
+        fb = g(b);
+    }
+    return b;
+}
+
+PathSample sample(const State& y) { return {Vec3(y.head<3>()), Vec3(y.segment<3>(3).normalized())}; }
+
+void finish(Result& r, const State& y, const State& f, Status status, long evaluations) {
+    r.status = status;
+    r.exit_point = y.head<3>();
+    r.exit_dir = y.segment<3>(3).normalized();
+    r.exit_index = f[7];
+    r.optical_path = y[6];
+    r.length = y[7];
+    r.evaluations = evaluations;
+}
+
+}  // namespace
+
+Result advance(const Profile& profile, const Region& region, const Vec3& x0, const Vec3& dir0, double lambda_um,
+               const Settings& s) {
+    Rhs f{profile, lambda_um};
+    Result res;
+    State y;
+    y << x0, index(profile, x0, lambda_um) * dir0.normalized(), 0.0, 0.0;
+    State k1 = f(y);
+    const bool fixed = s.fixed_step > 0;
+    double h = fixed ? s.fixed_step : initial_step(f, y, k1, s);
+    // On the boundary: within 1e-14 of the region's size (or of the coordinates, past it).
+    const double scale = length_scale(region);
+    auto boundary_tol = [scale](const State& ys) { return 1e-14 * (scale + ys.head<3>().cwiseAbs().maxCoeff()); };
+    if (s.record_path) res.path.push_back(sample(y));
+    bool just_rejected = false;
+    double err_old = 1e-4;
+    for (int tries = 0;; ++tries) {
+        if (tries >= s.max_steps) {
+            finish(res, y, k1, Status::budget_exhausted, f.evaluations);
+            return res;
+        }
+        const Step st = dp_step(f, y, k1, h);
+        const double g1 = signed_distance(region, Vec3(st.y1.head<3>()));
+        if (g1 > 0 && std::isfinite(g1)) {
+            // The trial step leaves the region: the crossing is the root of the signed
+            // distance along its dense output (Brent, to 1e-12 of the step), then Newton on
+            // the true step of size τ (d(distance)/dτ = normal·T) until it ends on the
+            // boundary to 1e-14 of the region's size. That step, whose stages stay inside
+            // (the profile need not be smooth across the boundary), is the one the error
+            // test accepts or rejects.
+            auto g = [&](double th) { return signed_distance(region, Vec3(st.at(th).head<3>())); };
+            // A start on the boundary (|distance| within rounding) counts as just inside.
+            double tau = h * brent(g, 0.0, 1.0, std::min(g(0.0), -boundary_tol(y)), g1, 1e-12);
+            Step end = dp_step(f, y, k1, tau);
+            bool on_boundary = false;
+            for (int it = 0; it < 8; ++it) {
+                const Vec3 xe = end.y1.head<3>();
+                const double ge = signed_distance(region, xe);
+                if ((on_boundary = std::abs(ge) <= boundary_tol(end.y1))) break;
+                const double slope = outward_normal(region, xe).dot(end.y1.segment<3>(3));
+                if (!(slope > 0)) break;
+                tau = std::clamp(tau - ge / slope, 0.0, 2.0 * h);
+                end = dp_step(f, y, k1, tau);
+            }
+            const double err = fixed ? 0.0 : error_norm(end.err, y, end.y1, s);
+            if (fixed || (on_boundary && err <= 1.0)) {
+                ++res.steps;
+                if (s.record_path) res.path.push_back(sample(end.y1));
+                finish(res, end.y1, end.k7, Status::left_region, f.evaluations);
+                return res;
+            }
+            ++res.rejected;
+            h = on_boundary ? tau * std::max(0.2, std::isfinite(err) ? 0.9 * std::pow(err, -0.2) : 0.2)
+                            : 0.5 * (tau > 0 ? std::min(tau, h) : h);
+            just_rejected = true;
+            continue;
+        }
+        double err = 0.0;
+        if (!fixed) {
+            err = error_norm(st.err, y, st.y1, s);
+            if (!(err <= 1.0)) {
+                ++res.rejected;
+                h *= std::max(0.2, std::isfinite(err) ? 0.9 * std::pow(err, -0.2) : 0.2);
+                just_rejected = true;
+                continue;
+            }
+        }
+        ++res.steps;
+        y = st.y1;
+        k1 = st.k7;
+        if (s.record_path) res.path.push_back(sample(y));
+        if (!fixed) {
+            // Gustafsson's PI control as in Hairer's DOPRI5 (β = 0.04): the new step from
+            // this error and the last accepted one, growth at most 10×, none after a rejection.
+            const double e = std::max(err, 1e-10);
+            const double grow = 0.9 * std::pow(e, -0.2 + 0.75 * 0.04) * std::pow(err_old, 0.04);
+            h *= std::clamp(grow, 0.2, just_rejected ? 1.0 : 10.0);
+            err_old = std::max(err, 1e-4);
+        }
+        just_rejected = false;
+    }
+}
+
+}  // namespace refract::grin

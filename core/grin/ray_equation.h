@@ -1,0 +1,63 @@
+#pragma once
+// A ray through a gradient-index medium (docs/grin.md): the ray equation
+// d/ds (n dr/ds) = ∇n (Born & Wolf, Principles of Optics, §3.2) in the form of Sharma,
+// Kumar & Ghatak (Applied Optics 21(6), 984–987, 1982): with dt = ds/n and T = dr/dt =
+// n·(unit direction), d²r/dt² = ∇(n²/2) = n∇n. Integrated by Dormand & Prince's embedded
+// Runge–Kutta 5(4) pair (J. Comput. Appl. Math. 6, 19–26, 1980) with its FSAL stage and
+// its dense output (Hairer, Nørsett & Wanner, Solving ODEs I, §II.6), the optical path
+// ∫n ds = ∫n² dt and the length ∫ds = ∫n dt integrated with it.
+//
+// advance() is what a walker calls for a ray inside a GRIN object: from a point and a
+// direction until the ray leaves the region (the crossing found by root finding on the
+// step's dense output, then polished on the true step) or the step budget runs out.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <refract/core/grin/profile.h>
+#include <refract/core/grin/region.h>
+
+namespace refract::grin {
+
+struct Settings {
+    // Each step's error estimate e_i of each component y_i of (r, T, optical path,
+    // length) must satisfy |e_i| ≤ abs_tol + rel_tol·max(|y_i| before, |y_i| after).
+    double abs_tol = 1e-10, rel_tol = 1e-10;
+    // Steps tried (accepted and rejected) before the ray ends as budget_exhausted.
+    int max_steps = 100000;
+    // > 0: fixed steps of this size in t (no error control; for comparisons only).
+    double fixed_step = 0.0;
+    // Record the points and directions along the ray (the start, every step's end, the exit).
+    bool record_path = false;
+};
+
+enum class Status {
+    left_region,      // the exit point is on the region's boundary
+    budget_exhausted  // max_steps tried: the ray ends where it is (lost light)
+};
+
+struct PathSample {
+    Vec3 x;
+    Vec3 dir;  // unit
+};
+
+struct Result {
+    Status status = Status::left_region;
+    Vec3 exit_point = Vec3::Zero();
+    Vec3 exit_dir = Vec3::Zero();  // unit
+    double exit_index = 1.0;       // n at the exit point
+    double optical_path = 0.0;     // ∫ n ds
+    double length = 0.0;           // ∫ ds
+    int steps = 0;                 // accepted
+    int rejected = 0;
+    long evaluations = 0;          // index-and-gradient evaluations
+    std::vector<PathSample> path;  // with Settings::record_path
+};
+
+// The ray from x0 (inside the region or on its boundary) in the unit direction dir0 at
+// wavelength lambda_um through `profile` until it leaves `region`. The profile and the
+// region must have been validated (validate() in profile.h and region.h).
+Result advance(const Profile& profile, const Region& region, const Vec3& x0, const Vec3& dir0, double lambda_um,
+               const Settings& settings = {});
+
+}  // namespace refract::grin
