@@ -4,6 +4,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -183,6 +185,10 @@ TriangleMesh read_mesh_file(const std::string& path, const std::string& node) {
     for (const Placed& p : placed) {
         const aiMesh* m = p.mesh;
         const std::string mesh_name = "mesh '" + clip_echo(m->mName.C_Str()) + "'";
+        // A node of negative determinant (a mirror) turns its triangles round (glTF 2.0,
+        // "Meshes": the winding order then is clockwise): rewound, they stay counter-clockwise
+        // seen from outside once placed.
+        const bool mirrored = p.to_world.leftCols<3>().determinant() < 0;
         std::vector<int> ids(m->mNumVertices, -1);
         for (unsigned f = 0; f < m->mNumFaces; ++f) {
             const aiFace& face = m->mFaces[f];
@@ -210,6 +216,7 @@ TriangleMesh read_mesh_file(const std::string& path, const std::string& node) {
             const Vec3& a = out.vertices[static_cast<std::size_t>(tri[0])];
             if ((out.vertices[static_cast<std::size_t>(tri[1])] - a).cross(out.vertices[static_cast<std::size_t>(tri[2])] - a).norm() == 0)
                 throw MeshFileError("file", path + ": " + mesh_name + ": triangle " + std::to_string(f) + " is degenerate (zero area)");
+            if (mirrored) std::swap(tri[1], tri[2]);
             out.triangles.push_back(tri);
         }
     }
