@@ -294,7 +294,7 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
                   "Only the round brilliant's intersection: plane-set kernel against Embree on its triangles, same rays");
     sub->add_flag("--meshes", a->meshes, "Only the mesh search, 80 to 327 680 triangles, against Embree alone");
     sub->add_flag("--mesh-file", a->mesh_file,
-                  "Only the mesh-file load: a 1.3 M-triangle binary PLY and STL, load and BVH times, bytes per triangle");
+                  "Only the mesh-file load: a 1.3 M-triangle binary PLY, STL and OBJ, load and BVH times, bytes per triangle");
     sub->add_flag("--objects", a->objects, "Only the nearest-hit search over 10 to 10 000 spheres, the tracer's (sphere set or object BVH) against one by one");
     sub->add_option("--rtiow", a->rtiow,
                     "Only the RTIOW chapter scene against a build of the book's code at PATH (docs/performance.md)");

@@ -1,5 +1,5 @@
 // refract bench --mesh-file: a 1.3 M-triangle mesh file (an icosphere written by the bench
-// itself as binary PLY and binary STL in a temporary directory) loaded as a scene object:
+// itself as binary PLY, binary STL and OBJ in a temporary directory) loaded as a scene object:
 // the time to read it, check its closure and build its BVH, and the bytes per triangle it
 // holds afterwards (docs/performance.md).
 #include <chrono>
@@ -77,6 +77,21 @@ void write_stl(const TriangleMesh& m, const fs::path& p) {
     }
 }
 
+// Wavefront OBJ: the float32 coordinates in the shortest decimal that reads back to them.
+void write_obj(const TriangleMesh& m, const fs::path& p) {
+    std::ofstream o(p, std::ios::binary);
+    char line[128];
+    for (const Vec3& v : m.vertices) {
+        const int n = std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", static_cast<double>(static_cast<float>(v.x())),
+                                    static_cast<double>(static_cast<float>(v.y())), static_cast<double>(static_cast<float>(v.z())));
+        o.write(line, n);
+    }
+    for (const auto& t : m.triangles) {
+        const int n = std::snprintf(line, sizeof line, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+        o.write(line, n);
+    }
+}
+
 void measure(const fs::path& file, const fs::path& dir) {
     const fs::path scene = dir / (file.stem().string() + "-" + file.extension().string().substr(1) + ".json");
     std::ofstream(scene) << R"({"camera": {"location": [0, 0, -5], "look_at": [0, 0, 0]},
@@ -110,7 +125,8 @@ void mesh_file() {
     const double t0 = now();
     write_ply(sphere, dir / "sphere.ply");
     write_stl(sphere, dir / "sphere.stl");
-    std::printf("Mesh files: an icosphere of %zu triangles (%zu vertices), written as binary PLY and binary STL in %.1f s, "
+    write_obj(sphere, dir / "sphere.obj");
+    std::printf("Mesh files: an icosphere of %zu triangles (%zu vertices), written as binary PLY, binary STL and OBJ in %.1f s, "
                 "each loaded as a glass object of a scene (read, welded, closure checked), then its BVH built; one "
                 "process, bytes per triangle after the build\n",
                 sphere.triangles.size(), sphere.vertices.size(), now() - t0);
@@ -121,6 +137,7 @@ void mesh_file() {
     try {
         measure(dir / "sphere.ply", dir);
         measure(dir / "sphere.stl", dir);
+        measure(dir / "sphere.obj", dir);
     } catch (...) {
         fs::remove_all(dir, ec);
         throw;

@@ -209,7 +209,12 @@ struct Writer {
         if (it == shared.end())
             it = shared.emplace(key, mesh(*tris, mat, name)).first;
         json n = {{"name", name}, {"mesh", it->second}};
-        if (o.placement) n["matrix"] = matrix(o.placement->transform.linear, o.placement->transform.translation);
+        // The object's transform after the mirror into glTF's right-handed frame (gltf_mirror):
+        // a node of negative determinant, whose triangles a glTF viewer (and the mesh reader)
+        // turns the other way round, so they stay counter-clockwise seen from outside.
+        const Eigen::Matrix3d S = gltf_mirror().topLeftCorner<3, 3>();
+        n["matrix"] = o.placement ? matrix(S * o.placement->transform.linear, S * o.placement->transform.translation)
+                                  : matrix(S, Vec3::Zero());
         nodes.push_back(n);
     }
 
@@ -223,11 +228,12 @@ struct Writer {
     void camera(json& doc, std::set<std::string>& names) {
         const Camera& c = scene.camera;
         const Camera::Basis b = c.basis();
-        const Vec3 d = b.D.normalized(), r = b.R.normalized(), u = b.U.normalized();
-        // glTF's camera looks along −z with +y up; refract's image right (POV-Ray's,
-        // sky × D) is glTF's −x, so the same rays run through the mirrored image.
+        const Eigen::Matrix3d S = gltf_mirror().topLeftCorner<3, 3>();
+        const Vec3 d = S * b.D.normalized(), r = S * b.R.normalized(), u = S * b.U.normalized();
+        // In the mirrored frame refract's image right (POV-Ray's, sky × D) is d × u, glTF's
+        // camera +x: the camera looks along −z with +y up and the glTF viewer sees refract's image.
         Eigen::Matrix3d A;
-        A.col(0) = -r;
+        A.col(0) = r;
         A.col(1) = u;
         A.col(2) = -d;
         const double aspect = static_cast<double>(c.width) / c.height;
@@ -243,7 +249,7 @@ struct Writer {
         if (c.thin_lens()) warn("camera", "thin lens (aperture, focus_distance) not exported: a pinhole");
         cam["extras"] = {{"width", c.width}, {"height", c.height}};
         doc["cameras"] = json::array({cam});
-        nodes.push_back({{"name", unique(names, "camera")}, {"camera", 0}, {"matrix", matrix(A, c.location)}});
+        nodes.push_back({{"name", unique(names, "camera")}, {"camera", 0}, {"matrix", matrix(A, S * c.location)}});
     }
 
     void light(const Light& l, size_t k, std::set<std::string>& names) {
@@ -257,14 +263,15 @@ struct Writer {
         const double intensity = std::max(1.0, l.color.maxCoeff());
         json g = {{"color", vec(l.color / intensity)}, {"intensity", intensity}};
         json n = {{"name", unique(names, item)}, {"extensions", {{"KHR_lights_punctual", {{"light", lights.size()}}}}}};
+        const Eigen::Matrix3d S = gltf_mirror().topLeftCorner<3, 3>();
         if (l.kind == Light::Kind::Point) {
             g["type"] = "point";
-            n["translation"] = vec(l.position);
+            n["translation"] = vec(S * l.position);
         } else {
             if (l.angular_diameter_deg != 0) warn(item, "angular_diameter_deg not exported (a point at infinity)");
             g["type"] = "directional";
             // The light shines along the node's −z.
-            const Vec3 z = -l.direction.normalized();
+            const Vec3 z = -(S * l.direction).normalized();
             const Vec3 x = (std::fabs(z.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(z).normalized();
             Eigen::Matrix3d A;
             A.col(0) = x;

@@ -370,7 +370,7 @@ struct Importer {
                 d.warn(item, "a mesh node without a unique name, left out (refract reads a mesh by its node's name)");
             } else {
                 objects.push_back({{"type", "mesh"}, {"name", name}, {"file", mesh_file}, {"node", name},
-                                   {"material", material(mat)}});
+                                   {"material", material(mat)}, {"transform", {{"scale", {1, 1, -1}}}}});
                 cover = name;
                 cover_material = mat;
             }
@@ -476,7 +476,11 @@ GltfImport import_gltf(const std::string& path, const std::string& mesh_file, in
             if (!child[k]) roots.push_back(static_cast<int>(k));
     }
     std::vector<bool> seen(nodes.size(), false);
-    for (int r : roots) im.node(r, Affine::Identity(), "", -1, 0, seen);
+    // glTF is right-handed and refract's camera POV-Ray's left-handed one (image right =
+    // sky × direction): the scene is the file mirrored in z, so that refract's image is the
+    // glTF viewer's (docs/gltf.md). Cameras and lights are placed by the mirror; each mesh
+    // object carries it as its transform (the reader places the triangles in the file's frame).
+    for (int r : roots) im.node(r, gltf_mirror(), "", -1, 0, seen);
 
     if (im.objects.empty())
         d.fail("/nodes", im.node_names.empty() || out.warnings.empty()

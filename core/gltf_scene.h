@@ -37,6 +37,10 @@ struct GltfExport {
 // dielectrics with KHR_materials_transmission, _ior, _volume and _dispersion.
 GltfExport export_gltf(const Scene& s, bool binary);
 
+// glTF's frame to refract's: the mirror z → −z (glTF is right-handed, refract's camera
+// POV-Ray's left-handed one); its own inverse, so the import and the export both use it.
+inline Eigen::Matrix4d gltf_mirror() { return Eigen::Vector4d(1, 1, -1, 1).asDiagonal(); }
+
 // KHR_materials_dispersion's `dispersion` is 20/V_d (V_d the Abbe number): both ways.
 double gltf_dispersion_of_abbe(double Vd);
 double abbe_of_gltf_dispersion(double dispersion);

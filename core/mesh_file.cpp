@@ -4,6 +4,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -87,16 +89,55 @@ std::string one_line(std::string s) {
     return clip_echo(s, 200);
 }
 
-// Equal positions, bit for bit (−0 taken as +0), are one vertex.
-struct PositionHash {
-    std::size_t operator()(const std::array<double, 3>& p) const {
-        std::size_t h = 0;
-        for (double v : p) {
-            std::uint64_t b;
-            std::memcpy(&b, &v, sizeof b);
-            h ^= std::hash<std::uint64_t>{}(b) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+// Equal positions, bit for bit (−0 taken as +0 by the caller), are one vertex: an
+// open-addressing table of vertex numbers (no allocation per vertex; the weld was a third of
+// a large file's load through a node-based map), grown at half full.
+class PositionIndex {
+public:
+    explicit PositionIndex(std::size_t expected) { rehash(expected); }
+
+    // The number of the vertex at `p` in `vertices`, appended when new.
+    int find_or_add(const Vec3& p, std::vector<Vec3>& vertices) {
+        if (2 * (vertices.size() + 1) > slots_.size()) rehash(2 * vertices.size() + 2, vertices);
+        for (std::size_t i = hash(p) & mask_;; i = (i + 1) & mask_) {
+            const int k = slots_[i];
+            if (k < 0) {
+                slots_[i] = static_cast<int>(vertices.size());
+                vertices.push_back(p);
+                return slots_[i];
+            }
+            if (same(vertices[static_cast<std::size_t>(k)], p)) return k;
         }
-        return h;
+    }
+
+private:
+    std::vector<int> slots_;
+    std::size_t mask_ = 0;
+
+    static std::uint64_t bits(double v) {
+        std::uint64_t b;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    }
+    static bool same(const Vec3& a, const Vec3& b) {
+        return bits(a.x()) == bits(b.x()) && bits(a.y()) == bits(b.y()) && bits(a.z()) == bits(b.z());
+    }
+    static std::size_t hash(const Vec3& p) {
+        std::uint64_t h = bits(p.x()) * 0x9e3779b97f4a7c15ULL;
+        h = (h ^ (h >> 29) ^ bits(p.y())) * 0xbf58476d1ce4e5b9ULL;
+        h = (h ^ (h >> 31) ^ bits(p.z())) * 0x94d049bb133111ebULL;
+        return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+    void rehash(std::size_t expected, const std::vector<Vec3>& vertices = {}) {
+        std::size_t n = 16;
+        while (n < 2 * expected) n *= 2;
+        slots_.assign(n, -1);
+        mask_ = n - 1;
+        for (std::size_t k = 0; k < vertices.size(); ++k) {
+            std::size_t i = hash(vertices[k]) & mask_;
+            while (slots_[i] >= 0) i = (i + 1) & mask_;
+            slots_[i] = static_cast<int>(k);
+        }
     }
 };
 
@@ -174,15 +215,26 @@ TriangleMesh read_mesh_file(const std::string& path, const std::string& node) {
     }
 
     TriangleMesh out;
-    std::unordered_map<std::array<double, 3>, int, PositionHash> index;
-    std::size_t corners = 0;
-    for (const Placed& p : placed) corners += 3 * static_cast<std::size_t>(p.mesh->mNumFaces);
+    std::size_t corners = 0, listed = 0;
+    for (const Placed& p : placed) {
+        corners += 3 * static_cast<std::size_t>(p.mesh->mNumFaces);
+        listed += p.mesh->mNumVertices;
+    }
     if (corners / 3 > static_cast<std::size_t>(1) << 30) throw MeshFileError("file", path + ": more than 2^30 triangles");
-    index.reserve(corners / 4 + 16);
+    // A closed mesh has about half as many vertices as triangles (Euler); STL lists every
+    // corner apart, so the file's own count can be six times that.
+    const std::size_t expected = std::min(listed, corners / 6 + 16);
+    PositionIndex index(expected);
+    out.vertices.reserve(expected);
+    out.triangles.reserve(corners / 3);
     const std::string where = node.empty() ? std::string() : " (node '" + clip_echo(node) + "')";
     for (const Placed& p : placed) {
         const aiMesh* m = p.mesh;
         const std::string mesh_name = "mesh '" + clip_echo(m->mName.C_Str()) + "'";
+        // A node of negative determinant (a mirror) turns its triangles round (glTF 2.0,
+        // "Meshes": the winding order then is clockwise): rewound, they stay counter-clockwise
+        // seen from outside once placed.
+        const bool mirrored = p.to_world.leftCols<3>().determinant() < 0;
         std::vector<int> ids(m->mNumVertices, -1);
         for (unsigned f = 0; f < m->mNumFaces; ++f) {
             const aiFace& face = m->mFaces[f];
@@ -200,16 +252,14 @@ TriangleMesh read_mesh_file(const std::string& path, const std::string& node) {
                     if (!w.allFinite())
                         throw MeshFileError("file", path + ": " + mesh_name + ": vertex " + std::to_string(v) +
                                                         " is not finite once placed by its node's transform");
-                    const std::array<double, 3> key{w.x() + 0.0, w.y() + 0.0, w.z() + 0.0};
-                    const auto [it, fresh] = index.emplace(key, static_cast<int>(out.vertices.size()));
-                    if (fresh) out.vertices.push_back(Vec3(key[0], key[1], key[2]));
-                    ids[v] = it->second;
+                    ids[v] = index.find_or_add(Vec3(w.x() + 0.0, w.y() + 0.0, w.z() + 0.0), out.vertices);
                 }
                 tri[c] = ids[v];
             }
             const Vec3& a = out.vertices[static_cast<std::size_t>(tri[0])];
             if ((out.vertices[static_cast<std::size_t>(tri[1])] - a).cross(out.vertices[static_cast<std::size_t>(tri[2])] - a).norm() == 0)
                 throw MeshFileError("file", path + ": " + mesh_name + ": triangle " + std::to_string(f) + " is degenerate (zero area)");
+            if (mirrored) std::swap(tri[1], tri[2]);
             out.triangles.push_back(tri);
         }
     }

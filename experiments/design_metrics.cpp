@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include <refract/core/threads.h>
+#include <refract/geometry/gem/gemcad_names.h>
 #include <refract/experiments/gem_observation.h>
 #include <refract/experiments/plot.h>
 #include <refract/geometry/error.h>
@@ -95,8 +96,18 @@ TierSweep parse_tier_sweep(const GemcadDesign& design, const std::string& text, 
     }
     for (std::size_t k = 0; k < design.tiers.size() && s.tiers.empty(); ++k)
         if (name == "tier " + std::to_string(k + 1)) s.tiers = {k};  // by its place in the file
-    std::string list;
-    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + clip_echo(n);
+    if (s.tiers.empty()) s.tiers = tiers_of_trade_name(design, name);  // P1, C2, T, G, CU by side and angle
+    const auto listed = [](const std::vector<std::string>& all) {
+        std::vector<std::string> once;
+        for (const std::string& n : all)
+            if (std::find(once.begin(), once.end(), n) == once.end()) once.push_back(n);
+        std::string list;
+        for (const std::string& n : once) list += (list.empty() ? "" : ", ") + clip_echo(n);
+        return list;
+    };
+    std::string list = listed(names);
+    const std::string trade = listed(trade_tier_names(design));
+    if (trade != list) list += "; by side and angle: " + trade;
     if (s.tiers.empty()) refuse(design.source + " has no tier named '" + clip_echo(name) + "' (its tiers: " + list + ")");
     for (std::size_t k : s.tiers)
         if (design.tiers[k].pavilion != design.tiers[s.tiers[0]].pavilion) {

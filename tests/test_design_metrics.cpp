@@ -69,7 +69,7 @@ TEST_CASE("A design is measured at width 2: the marquise (L/W 2) has the frame o
 TEST_CASE("A design's facets leak by the side their normals face: leakage is the light leaving downwards through "
           "the pavilion, whatever the tiers are named",
           "[gem][design-metrics]") {
-    // The princess names its pavilion tiers "1" and "2", its crown "A", "K", "B", "T".
+    // The princess names its pavilion tiers "P1" and "P2", its crown "C1", "C2", "C3", "T".
     const DesignGem p = dm::build_at_width_2(read_gemcad(design_path("princess")));
     const gem_metrics::GemMetrics g = dm::measure(p, few_rays());
     CHECK(g.leakage.value > 0.01);
@@ -99,7 +99,7 @@ TEST_CASE("A tier sweep varies the angle of every tier of one name on its side, 
     const GemcadDesign d = read_gemcad(design_path("princess"));
     auto o = few_rays();
     o.rays = 64;
-    const dm::TierSweep s = dm::parse_tier_sweep(d, "2:38:40:2", o);
+    const dm::TierSweep s = dm::parse_tier_sweep(d, "P2:38:40:2", o);
     REQUIRE(s.angles.count == 2);
     REQUIRE(s.tiers == std::vector<std::size_t>{6});
     CHECK(d.tiers[6].pavilion);
@@ -111,18 +111,18 @@ TEST_CASE("A tier sweep varies the angle of every tier of one name on its side, 
     CHECK(rows[0].stone.volume != rows[1].stone.volume);
     const std::string csv = dm::csv_text(s, rows);
     CHECK(std::count(csv.begin(), csv.end(), '\n') == 3);
-    CHECK_THAT(csv, Contains("\n0,2,38,ok,,"));
-    // The oval cuts its pavilion mains "1" as five tiers (one distance per azimuth): swept together.
-    CHECK(dm::parse_tier_sweep(read_gemcad(design_path("oval")), "1:41:43:1", o).tiers.size() == 5);
+    CHECK_THAT(csv, Contains("\n0,P2,38,ok,,"));
+    // The oval cuts its pavilion mains "P1" as five tiers (one distance per azimuth): swept together.
+    CHECK(dm::parse_tier_sweep(read_gemcad(design_path("oval")), "P1:41:43:1", o).tiers.size() == 5);
     CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "P9:38:40:1", o); }),
-               Contains("--tier 'P9:38:40:1': ") && Contains("princess.asc has no tier named 'P9' (its tiers: G, A, K, B, T, 1, 2)"));
-    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "2:80:95:5", o); }), Contains("the angles run from 0 to 90 degrees"));
-    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "2:40:38:1", o); }), Contains("STOP is below START"));
-    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "2", o); }), Contains("expected NAME:FROM:TO:STEP"));
+               Contains("--tier 'P9:38:40:1': ") && Contains("princess.asc has no tier named 'P9' (its tiers: G, C1, C2, C3, T, P1, P2)"));
+    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "P2:80:95:5", o); }), Contains("the angles run from 0 to 90 degrees"));
+    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "P2:40:38:1", o); }), Contains("STOP is below START"));
+    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(d, "P2", o); }), Contains("expected NAME:FROM:TO:STEP"));
     GemcadDesign both = d;
-    both.tiers[1].names[0] = "2";  // a crown tier named like a pavilion tier
-    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(both, "2:38:40:1", o); }),
-               Contains("tiers named '2' lie on the crown and on the pavilion"));
+    both.tiers[1].names[0] = "P2";  // a crown tier named like a pavilion tier
+    CHECK_THAT(refusal([&] { dm::parse_tier_sweep(both, "P2:38:40:1", o); }),
+               Contains("tiers named 'P2' lie on the crown and on the pavilion"));
     CHECK(dm::parse_tier_sweep(both, "tier 7:38:40:1", o).tiers == std::vector<std::size_t>{6});
 }
 
@@ -137,7 +137,7 @@ TEST_CASE("refract metrics and refract sweep design on the command line: the met
                     dir)
               .code == 0);
     CHECK(fs::file_size(dir / "aset.png") > 0);
-    CHECK(test::run("sweep design " + oval + " --tier 1:40:41:1 -o " + (dir / "s.csv").string() + fast, dir).code == 0);
+    CHECK(test::run("sweep design " + oval + " --tier P1:40:41:1 -o " + (dir / "s.csv").string() + fast, dir).code == 0);
     std::ifstream in(dir / "s.csv");
     std::stringstream text;
     text << in.rdbuf();

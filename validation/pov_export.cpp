@@ -465,6 +465,16 @@ std::string background(const Background& b, const std::string& map_file) {
 
 }  // namespace
 
+namespace {
+
+bool has_area_light(const Scene& s) {
+    for (const Light& l : s.lights)
+        if (l.kind == Light::Kind::Rectangle || l.kind == Light::Kind::Disk) return true;
+    return false;
+}
+
+}  // namespace
+
 std::string export_pov(const Scene& s) { return export_pov(s, ExportOptions{}); }
 
 std::string export_pov(const Scene& s, const ExportOptions& opt) {
@@ -487,6 +497,14 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     o << "\n}\n";
     o << camera(s.camera, s.settings.samples);
     o << background(s.background, opt.environment_map);
+    // POV-Ray's shadow cache (the last opaque object that blocked a light is tested first,
+    // without the shadow ray's 1e-3 tolerances; docs/validation.md D7) acts between the
+    // grid points of an area light at one surface point: a grazing ray to one point is then
+    // shadowed by the object that blocked the point before, in the order POV-Ray tests them.
+    // Lights in a light_group use no cache, so with an area light the lights and the objects
+    // are written as one light_group.
+    const bool light_group = has_area_light(s) && !opt.photons;
+    if (light_group) o << "light_group {\n";
     for (const Light& l : s.lights) {
         switch (l.kind) {
             case Light::Kind::Directional: {
@@ -557,6 +575,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         for (size_t i : g) o << "  " << object_shape(s.objects[i], false) << " }\n";
         o << "  " << texture(m) << "\n  " << interior(*m.dielectric()) << target << "\n}\n";
     }
+    if (light_group) o << "}\n";
     return o.str();
 }
 

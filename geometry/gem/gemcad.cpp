@@ -8,6 +8,7 @@
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
 #include <refract/geometry/gem/gemcad.h>
+#include <refract/geometry/gem/gemcad_names.h>
 #include <refract/geometry/input_file.h>
 
 namespace refract {
@@ -248,6 +249,11 @@ GemcadDesign brilliant_design(const Gem& gem) {
         t->names.push_back(kind != last_kind || t->indices.size() == 1 ? kind : std::string());
         last_kind = kind;
     }
+    // The tiers named as the trade names them (G, T, C1…, P1…, CU), by side and angle.
+    const std::vector<std::string> trade = trade_tier_names(d);
+    for (std::size_t k = 0; k < d.tiers.size(); ++k)
+        for (std::string& n : d.tiers[k].names)
+            if (!n.empty()) n = trade[k];
     return d;
 }
 

@@ -169,15 +169,20 @@ def main():
     for name, objs in (("ring-gem.json", by_file), ("ring-gem-inline.json", inline)):
         with open(os.path.join(HERE, name), "w") as f:
             f.write(json.dumps(scene(objs), indent=1) + "\n")
-    # The glTF scene by hand, as refract's scene format says it (docs/gltf.md's mapping).
+    # The glTF scene by hand, as refract's scene format says it (docs/gltf.md's mapping):
+    # glTF is right-handed, refract's camera POV-Ray's left-handed one, so the import mirrors
+    # z (a point (x, y, z) of the file is (x, y, -z) in the scene; the meshes by a transform).
+    def mirrored(p):
+        return [p[0], p[1], -p[2] if p[2] else 0.0]
     gltf_scene = {
         "description": "ring-gem.glb's glTF scene written by hand (tests/data/make_ring_gem.py)",
-        "camera": {"location": CAMERA_AT, "look_at": [0, 1.25, 0], "vfov": VFOV_DEG, "width": 64, "height": 48},
+        "camera": {"location": mirrored(CAMERA_AT), "look_at": [0, 1.25, 0], "vfov": VFOV_DEG, "width": 64,
+                   "height": 48},
         "materials": {"gold": {"type": "metal", "color": [0.95, 0.75, 0.3]},
                       "diamond": {"type": "dielectric", "dispersion": {"model": "abbe", "nd": ND, "Vd": VD},
                                   "absorption": {"transmittance": ATTENUATION, "thickness": DISTANCE}}},
-        "objects": [dict(o) for o in by_file],
-        "lights": [{"position": LIGHT_AT, "color": [1, 1, 1]}]}
+        "objects": [dict(o, transform={"scale": [1, 1, -1]}) for o in by_file],
+        "lights": [{"position": mirrored(LIGHT_AT), "color": [1, 1, 1]}]}
     with open(os.path.join(HERE, "ring-gem-gltf.json"), "w") as f:
         f.write(json.dumps(gltf_scene, indent=1) + "\n")
 

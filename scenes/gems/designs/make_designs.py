@@ -125,7 +125,11 @@ def surviving(text):
 
 def design(name, outline, girdle_az, girdle_half, crown, table_inset, pavilion, culet_inset=None,
            headings=(), symmetry=(1, True), index=2.417):
-    """crown/pavilion: lists of (label, angle, inset, azimuths), from the girdle inwards."""
+    """crown/pavilion: lists of (angle, inset, azimuths), from the girdle inwards.
+
+    Tiers are named as the trade names them: G the girdle, C1, C2, ... the crown's rows and
+    P1, P2, ... the pavilion's from the girdle inwards (their angles decrease), T the table,
+    CU the culet."""
     tiers = []  # (angle_text, distance, [(index, name)])
 
     def add(angle_text, facets):
@@ -147,7 +151,8 @@ def design(name, outline, girdle_az, girdle_half, crown, table_inset, pavilion, 
         labels.append("G")
     z = girdle_half
     last = None
-    for label, angle, inset, azimuths in crown:
+    for row, (angle, inset, azimuths) in enumerate(crown):
+        label = "C%d" % (row + 1)
         if last is not None:
             z += (inset - last[1]) * math.tan(math.radians(last[0]))
         t = math.radians(angle)
@@ -161,7 +166,8 @@ def design(name, outline, girdle_az, girdle_half, crown, table_inset, pavilion, 
     labels.append("T")
     z = girdle_half  # depth below the girdle plane
     last = None
-    for label, angle, inset, azimuths in pavilion:
+    for row, (angle, inset, azimuths) in enumerate(pavilion):
+        label = "P%d" % (row + 1)
         if last is not None:
             z += (inset - last[1]) * math.tan(math.radians(last[0]))
         t = math.radians(angle)
@@ -173,7 +179,7 @@ def design(name, outline, girdle_az, girdle_half, crown, table_inset, pavilion, 
     if culet_inset is not None:
         z += (culet_inset - last[1]) * math.tan(math.radians(last[0]))
         tiers.append(("-0", round(z, 10), [0]))
-        labels.append("C")
+        labels.append("CU")
     def text(keep):
         out = []
         for (angle, d, idx), label in zip(tiers, labels):
@@ -201,71 +207,71 @@ def main():
     chevrons = [a + o for a in sides for o in (-15.0, 15.0)]
     cat["princess"] = design(
         "Princess (square modified brilliant)", rectangle(1.0), sides, 0.02,
-        [("A", 40, 0.0, sides), ("K", 30, 0.0, every(90, 45)), ("B", 28, 0.15, sides)], 0.3,
-        [("1", 42, 0.0, chevrons), ("2", 40, 0.35, sides), ("3", 38, 0.7, chevrons)],
+        [(40, 0.0, sides), (30, 0.0, every(90, 45)), (28, 0.15, sides)], 0.3,
+        [(42, 0.0, chevrons), (40, 0.35, sides), (38, 0.7, chevrons)],
         headings=("Source: the square modified brilliant sold as the 'princess' since about 1980, chevron pavilion;",
                   "reference proportions: L/W 1.00, table ~70 %, crown 40/28 deg (corners 30), pavilion 42/40/38 deg"),
         symmetry=(4, True))
     cat["emerald"] = design(
         "Emerald (rectangular step cut, cut corners)", rectangle(1.4, 0.25), sq8, 0.02,
-        [("A", 45, 0.0, sq8), ("B", 38, 0.1, sq8), ("C", 30, 0.2, sq8)], 0.32,
-        [("1", 52, 0.0, sq8), ("2", 46, 0.25, sq8), ("3", 40, 0.5, sq8)],
+        [(45, 0.0, sq8), (38, 0.1, sq8), (30, 0.2, sq8)], 0.32,
+        [(52, 0.0, sq8), (46, 0.25, sq8), (40, 0.5, sq8)],
         headings=("Source: the step cut of rectangular outline with cut corners (the trade's 'emerald cut');",
                   "reference proportions: L/W 1.40, table ~65 %, three crown and three pavilion steps"),
         symmetry=(2, True))
     cat["asscher"] = design(
         "Asscher (square step cut, large cut corners)", rectangle(1.0, 0.35), sq8, 0.02,
-        [("A", 45, 0.0, sq8), ("B", 38, 0.1, sq8), ("C", 30, 0.2, sq8)], 0.38,
-        [("1", 52, 0.0, sq8), ("2", 46, 0.25, sq8), ("3", 40, 0.5, sq8)],
+        [(45, 0.0, sq8), (38, 0.1, sq8), (30, 0.2, sq8)], 0.38,
+        [(52, 0.0, sq8), (46, 0.25, sq8), (40, 0.5, sq8)],
         headings=("Source: J. Asscher's square step cut (Amsterdam, 1902): square outline, large cut corners;",
                   "reference proportions: L/W 1.00, table ~60 %, three crown and three pavilion steps"),
         symmetry=(4, True))
     cat["radiant"] = design(
         "Radiant (rectangular modified brilliant, cut corners)", rectangle(1.25, 0.2), sq8, 0.02,
-        [("A", 40, 0.0, sq8), ("B", 30, 0.15, sq8)], 0.35,
-        [("1", 43, 0.0, r16), ("2", 41, 0.4, chevrons)],
+        [(40, 0.0, sq8), (30, 0.15, sq8)], 0.35,
+        [(43, 0.0, r16), (41, 0.4, chevrons)],
         headings=("Source: H. Grossbard's radiant (1977): cut-cornered rectangle, brilliant-style facets below;",
                   "reference proportions: L/W 1.25, table ~65 %, crown 40/30 deg, pavilion 43/41 deg"),
         symmetry=(2, True))
     cat["cushion"] = design(
         "Cushion (rounded square modified brilliant)", superellipse(4), r16, 0.02,
-        [("A", 38, 0.0, r16), ("B", 28, 0.15, r8o)], 0.38,
-        [("1", 42, 0.0, r16), ("2", 40, 0.4, r8o)],
+        [(38, 0.0, r16), (28, 0.15, r8o)], 0.38,
+        [(42, 0.0, r16), (40, 0.4, r8o)],
         headings=("Source: the rounded-square 'cushion' outline (old mine cut's modern descendant);",
                   "reference proportions: L/W 1.00, table ~62 %, crown 38/28 deg, pavilion 42/40 deg"),
         symmetry=(4, True))
     cat["oval"] = design(
         "Oval (elliptical modified brilliant)", ellipse(1.35), every(11.25), 0.02,
-        [("A", 36, 0.0, r16), ("B", 25, 0.15, r8o)], 0.45,
-        [("1", 42, 0.0, r16), ("2", 40, 0.3, r8o)],
+        [(36, 0.0, r16), (25, 0.15, r8o)], 0.45,
+        [(42, 0.0, r16), (40, 0.3, r8o)],
         headings=("Source: elliptical outline with brilliant-style facets (the trade's oval brilliant);",
                   "reference proportions: L/W 1.35, table ~55 %, crown 36/25 deg, pavilion 42/40 deg"),
         symmetry=(2, True))
     cat["pear"] = design(
         "Pear (teardrop modified brilliant)", pear(1.6), every(11.25), 0.02,
-        [("A", 36, 0.0, r16), ("B", 25, 0.15, r8o)], 0.45,
-        [("1", 42, 0.0, r16), ("2", 40, 0.3, r8o)],
+        [(36, 0.0, r16), (25, 0.15, r8o)], 0.45,
+        [(42, 0.0, r16), (40, 0.3, r8o)],
         headings=("Source: half round, half marquise outline with brilliant-style facets (the trade's pear);",
                   "reference proportions: L/W 1.30, table ~55 %, crown 36/25 deg, pavilion 42/40 deg"),
         symmetry=(1, True))
     cat["marquise"] = design(
         "Marquise (navette modified brilliant)", marquise(2.0), every(11.25), 0.02,
-        [("A", 36, 0.0, r16), ("B", 25, 0.15, r8o)], 0.45,
-        [("1", 42, 0.0, r16), ("2", 40, 0.3, r8o)],
+        [(36, 0.0, r16), (25, 0.15, r8o)], 0.45,
+        [(42, 0.0, r16), (40, 0.3, r8o)],
         headings=("Source: the lens (two circular arcs) outline with brilliant-style facets (navette);",
                   "reference proportions: L/W 2.00, table ~55 %, crown 36/25 deg, pavilion 42/40 deg"),
         symmetry=(2, True))
     cat["old-european"] = design(
         "Old European (round, small table, high crown, open culet)", round_outline(), every(11.25), 0.02,
-        [("A", 42, 0.0, r16), ("B", 36, 0.12, every(45)), ("C", 22, 0.35, r8o)], 0.55,
-        [("1", 43, 0.0, r16), ("2", 41, 0.3, every(45))], culet_inset=0.93,
+        [(42, 0.0, r16), (36, 0.12, every(45)), (22, 0.35, r8o)], 0.55,
+        [(43, 0.0, r16), (41, 0.3, every(45))], culet_inset=0.93,
         headings=("Source: the round cut of c. 1870-1930 (before Tolkowsky, 1919): small table, high crown, open culet;",
                   "reference proportions: table ~45 %, crown 42/36/22 deg, pavilion 43/41 deg, culet ~7 %"),
         symmetry=(8, True))
     cat["single"] = design(
         "Single cut (table, 8 crown and 8 pavilion facets)", round_outline(), r16, 0.02,
-        [("A", 35, 0.0, every(45))], 0.5,
-        [("1", 41, 0.0, every(45))],
+        [(35, 0.0, every(45))], 0.5,
+        [(41, 0.0, every(45))],
         headings=("Source: the single cut (8/8 facets and a table), used for small melee;",
                   "reference proportions: table ~50 %, crown 35 deg, pavilion 41 deg, 16 girdle facets"),
         symmetry=(8, True))
