@@ -6,7 +6,7 @@
 // U.S. Government Printing Office, 1976) up to its 84.852 km geopotential (86 km
 // geometric): linear in geopotential height layer by layer, pressure by hydrostatic
 // equilibrium within each layer. Above, the last temperature continues isothermally, so
-// n − 1 falls smoothly to 0 (it is 1.5·10⁻⁹ at 86 km). Optional: a relative humidity at
+// n − 1 falls smoothly to 0 (it is 1.6·10⁻⁹ at 86 km). Optional: a relative humidity at
 // the ground falling with a scale height, and a surface layer (a temperature difference
 // ΔT at the ground decaying as ΔT·exp(−h/height): a hot road, a cold sea) for mirages.
 // The index of the air at each height is Ciddor's (core/grin/air_index.h).
