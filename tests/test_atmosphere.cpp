@@ -66,6 +66,20 @@ TEST_CASE("Standard atmosphere index: n continuous at every layer boundary, dn/d
     // Between the boundaries dn/dh is the slope of n (central difference over 1 m at 5 km).
     const Atmosphere::Index mid = atm.index(5000.0, ref);
     CHECK_THAT((atm.index(5000.5, ref).n - atm.index(4999.5, ref).n), WithinRel(mid.dn_dh, 1e-6));
+    // So it is with humidity (at 1 km) and in a hot road's surface layer (1 m thick, 10 K,
+    // at 0.5 m, over ±1 mm); there the pressure also agrees with hydrostatic equilibrium.
+    AtmosphereSpec wet_hot;
+    wet_hot.relative_humidity = 0.8;
+    wet_hot.surface_delta_T_K = 10.0;
+    wet_hot.surface_height_m = 1.0;
+    const Atmosphere wh(wet_hot);
+    for (double h : {1000.0, 0.5}) {
+        INFO(h << " m");
+        const double e = h > 1 ? 0.5 : 1e-3;
+        CHECK_THAT((wh.index(h + e, ref).n - wh.index(h - e, ref).n) / (2 * e), WithinRel(wh.index(h, ref).dn_dh, 1e-6));
+        CHECK_THAT((wh.state(h + e).pressure_Pa - wh.state(h - e).pressure_Pa) / (2 * e),
+                   WithinRel(wh.state(h).dp_dh, 1e-6));
+    }
     // Humid air at the ground is Ciddor's air at the same state.
     AtmosphereSpec humid;
     humid.relative_humidity = 0.6;
