@@ -68,6 +68,14 @@ IndexGradient index_and_gradient(const TabulatedRadial& p, const Vec3& x, double
     return {n, v * (dn / r)};
 }
 
+IndexGradient index_and_gradient(const EarthAtmosphere& p, const Vec3& x, double l) {
+    const Vec3 v = x - p.centre;
+    const double r = v.norm(), h = r - kEarthRadius_m;
+    if (!(h > 0)) return {p.air.index(0.0, l).n, Vec3::Zero()};
+    const Atmosphere::Index a = p.air.index(h, l);
+    return {a.n, v * (a.dn_dh / r)};
+}
+
 // ---------------------------------------------------------------------------------------
 // Rods: r the distance from the axis, v the vector from the axis to x.
 
@@ -108,6 +116,7 @@ REFRACT_GRIN_FROM_BOTH(MaxwellFishEye)
 REFRACT_GRIN_FROM_BOTH(SechRod)
 REFRACT_GRIN_FROM_BOTH(ParabolicRod)
 REFRACT_GRIN_FROM_BOTH(TabulatedRadial)
+REFRACT_GRIN_FROM_BOTH(EarthAtmosphere)
 #undef REFRACT_GRIN_FROM_BOTH
 
 double index(const Profile& p, const Vec3& x, double l) {
@@ -282,6 +291,9 @@ struct Check {
         check_table(p, path);
         if (p.n2.size() != p.r.size()) p = tabulated_radial(p.centre, p.r, p.n, path);
         check_spline_positive(p, path);
+    }
+    void operator()(EarthAtmosphere& p) const {
+        finite_vec(p.centre, path + "/centre");  // the air's state is checked when it is built
     }
 };
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <refract/core/grin/atmosphere.h>
 #include <refract/core/grin/region.h>
 
 namespace refract::grin {
@@ -80,8 +81,16 @@ struct TabulatedRadial {
 TabulatedRadial tabulated_radial(const Vec3& centre, std::vector<double> r, std::vector<double> n,
                                  const std::string& path);
 
+// The air over a spherical Earth (core/grin/atmosphere.h): n(h, λ) at the height
+// h = |x − centre| − kEarthRadius_m (held at the ground's below it), its gradient
+// dn/dh r̂; dispersive (Ciddor's index at each λ). Lengths in metres.
+struct EarthAtmosphere {
+    Vec3 centre = Vec3::Zero();
+    Atmosphere air{};
+};
+
 using Profile = std::variant<LinearHeight, ExponentialHeight, Luneburg, MaxwellFishEye, SechRod, ParabolicRod,
-                             TabulatedRadial>;
+                             TabulatedRadial, EarthAtmosphere>;
 
 struct IndexGradient {
     double n;
@@ -99,6 +108,7 @@ REFRACT_GRIN_PROFILE_OVERLOADS(MaxwellFishEye)
 REFRACT_GRIN_PROFILE_OVERLOADS(SechRod)
 REFRACT_GRIN_PROFILE_OVERLOADS(ParabolicRod)
 REFRACT_GRIN_PROFILE_OVERLOADS(TabulatedRadial)
+REFRACT_GRIN_PROFILE_OVERLOADS(EarthAtmosphere)
 REFRACT_GRIN_PROFILE_OVERLOADS(Profile)
 #undef REFRACT_GRIN_PROFILE_OVERLOADS
 
