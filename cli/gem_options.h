@@ -5,12 +5,29 @@
 #include "cli/commands.h"
 #include <refract/core/spectrum/dispersion.h>
 #include <refract/experiments/gem_metrics.h>
+#include <refract/experiments/gem_observer.h>
 #include <refract/geometry/error.h>
 
 namespace refract::cli {
 
+// --observer NAME: the light return's observer model (experiments/gem_observer.h).
+inline void add_observer_option(CLI::App* sub, std::string& observer) {
+    sub->add_option("--observer", observer,
+                    "Observer model of the light return: " + gem_metrics::observer_names_text() +
+                        " (aset; docs/gem-metrics.md)");
+}
+
+// The observer name checked: InputError "--observer 'NAME': expected aset, ..." else.
+inline void check_observer(const std::string& observer) {
+    try {
+        gem_metrics::find_observer(observer);
+    } catch (const InputError& e) {
+        throw InputError("--" + std::string(e.what()));
+    }
+}
+
 struct GemOptionArgs {
-    std::string material = "diamond", polarisation = "exact";
+    std::string material = "diamond", polarisation = "exact", observer = "aset";
     int rays = 4096, wavelengths = 31;
     std::uint64_t seed = 1;
 };
@@ -21,6 +38,7 @@ inline void add_gem_options(CLI::App* sub, GemOptionArgs& a, const std::string& 
     sub->add_option("--wavelengths", a.wavelengths, "Spectral bands, 400..700 nm")->check(CLI::Range(1, 301));
     sub->add_option("--polarisation", a.polarisation, "exact (Stokes-Mueller) or natural");
     sub->add_option("--seed", a.seed, seed_help)->check(CLI::NonNegativeNumber);
+    add_observer_option(sub, a.observer);
 }
 
 // The options checked (InputError naming the option) before any work.
@@ -32,7 +50,9 @@ inline gem_metrics::MetricOptions metric_options(const GemOptionArgs& a) {
     } catch (const InputError& e) {
         throw InputError("--material: " + std::string(e.what()));
     }
+    check_observer(a.observer);
     gem_metrics::MetricOptions m;
+    m.observer = a.observer;
     m.material = a.material;
     m.rays = a.rays;
     m.wavelengths = a.wavelengths;

@@ -1,4 +1,4 @@
-// refract metrics DESIGN.asc [--rays N] [--json] [--aset FILE] [--ideal-scope FILE]
+// refract metrics DESIGN.asc [--rays N] [--observer NAME] [--json] [--aset FILE] [--ideal-scope FILE]
 // The gem metrics of a faceting design (experiments/design_metrics.h, docs/gems.md "Metrics
 // of a design"): light return, fire, scintillation, leakage and the ASET shares, the stone
 // built exactly at width 2; the viewers' images on request.
@@ -52,13 +52,16 @@ void run(const Args& a) {
         j["balance"] = {{"crown", g.balance.crown}, {"girdle", g.balance.girdle}, {"pavilion", g.balance.pavilion},
                         {"lost", g.balance.lost}, {"missed", g.balance.missed}};
         j["material"] = a.gem.material;
+        j["observer"] = g.observer;
         j["rays"] = a.gem.rays;
         std::cout << j.dump(2) << "\n";
         return;
     }
-    std::printf("%s: %zu facets, volume %.6g at width 2, L/W %.4f, H/W %.4f (%s, %d rays)\n", name.c_str(),
+    // The observer is named when it is not the default (whose line stays as it was).
+    const std::string observer = g.observer == "aset" ? "" : ", observer " + g.observer;
+    std::printf("%s: %zu facets, volume %.6g at width 2, L/W %.4f, H/W %.4f (%s, %d rays%s)\n", name.c_str(),
                 stone.gem.facets.size(), stone.volume, stone.length / stone.width, stone.height / stone.width,
-                a.gem.material.c_str(), a.gem.rays);
+                a.gem.material.c_str(), a.gem.rays, observer.c_str());
     const auto line = [](const char* what, const refract::gem_metrics::Metric& x) {
         std::printf("%-14s %.4f +- %.4f\n", what, x.value, x.error);
     };

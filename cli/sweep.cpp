@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/gem_options.h"
 #include "cli/sweep_mpi.h"
 #include <refract/core/progress.h>
 #include <refract/experiments/gem_metrics.h>
@@ -21,7 +22,7 @@ namespace sw = refract::experiments::gem_sweep;
 struct Args {
     std::string preset = "gia-default";
     std::vector<std::string> ranges = std::vector<std::string>(sw::parameter_names().size());
-    std::string output, material = "diamond", polarisation = "exact";
+    std::string output, material = "diamond", polarisation = "exact", observer = "aset";
     int rays = 4096, wavelengths = 31, threads = 0;
     std::uint64_t seed = 1;
     bool quiet = false;
@@ -40,6 +41,8 @@ sw::Sweep make_sweep(const Args& a) {
     } catch (const refract::InputError& e) {
         throw refract::InputError("--material: " + std::string(e.what()));
     }
+    refract::cli::check_observer(a.observer);
+    s.metric.observer = a.observer;
     s.metric.material = a.material;
     s.metric.rays = a.rays;
     s.metric.wavelengths = a.wavelengths;
@@ -189,6 +192,7 @@ refract::cli::Registrar reg{35, [](CLI::App& app) {
         ->group("");
     sub->add_option("--seed", a->seed, "Base seed (each cut's seed derives from it and the cut's parameters)")
         ->check(CLI::NonNegativeNumber);
+    refract::cli::add_observer_option(sub, a->observer);
     sub->add_option("--threads", a->threads, "Worker threads per process (0: all cores)")->check(refract::cli::thread_range());
     sub->add_flag("--quiet", a->quiet, "No progress line");
     sub->callback([a, model] {

@@ -189,12 +189,12 @@ std::string csv_text(const TierSweep& sweep, const std::vector<TierRow>& rows) {
     std::string s =
         "index,tier,angle,status,reason,facets,volume,length_over_width,height_over_width,"
         "light_return,light_return_error,fire,fire_error,leakage,leakage_error,scintillation,scintillation_error,"
-        "aset_red,aset_green,aset_blue,aset_white\n";
+        "aset_red,aset_green,aset_blue,aset_white,observer\n";
     const std::string tier = csv_quote(sweep.name);
     for (const TierRow& r : rows) {
         s += std::to_string(r.index) + "," + tier + "," + number(r.angle);
         if (!r.possible) {
-            s += ",impossible," + csv_quote(r.reason) + std::string(16, ',') + "\n";
+            s += ",impossible," + csv_quote(r.reason) + std::string(17, ',') + "\n";
             continue;
         }
         const DesignGem& g = r.stone;
@@ -204,7 +204,7 @@ std::string csv_text(const TierSweep& sweep, const std::vector<TierRow>& rows) {
         for (const auto* x : {&m.light_return, &m.fire, &m.leakage, &m.scintillation})
             s += "," + number(x->value) + "," + number(x->error);
         for (const double v : {m.aset.red, m.aset.green, m.aset.blue, m.aset.white}) s += "," + number(v);
-        s += "\n";
+        s += "," + csv_quote(m.observer) + "\n";
     }
     return s;
 }

@@ -11,6 +11,7 @@
 
 #include <refract/core/random.h>
 #include <refract/experiments/gem_observation.h>
+#include <refract/experiments/gem_observer.h>
 
 namespace refract::gem_metrics {
 
@@ -42,7 +43,10 @@ struct EyeSample {
     Vec3 viewer;  // unit, from the stone towards the eye
     Rng rng;      // the sample's stream, continued (spot-layout rotations)
 };
-EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg, double frame) {
+// `turn` (the stone tilted, world = turn · stone frame): the viewer drawn in the world and
+// the ray built in the stone's frame, so that it meets the tilted stone.
+EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg, double frame,
+                     const Eigen::Matrix3d* turn = nullptr) {
     Rng rng(seed, stream, static_cast<std::uint64_t>(i));
     Vec3 v(0, 0, 1);
     if (cone_deg > 0) {
@@ -50,6 +54,7 @@ EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, i
         const double sn = std::sqrt(std::max(0.0, 1 - c * c));
         v = Vec3(sn * std::cos(phi), sn * std::sin(phi), c);
     }
+    if (turn) v = turn->transpose() * v;
     const Vec3 a = (std::abs(v.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(v).normalized(), b = v.cross(a);
     for (;;) {
         const double r = 1.1 * frame * std::sqrt(rng.uniform()), phi = 2 * M_PI * rng.uniform();
@@ -103,6 +108,9 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     // Light return, leakage and the energy balance: one band per eye ray, drawn by
     // luminance along a golden-ratio sequence (every prefix of the rays spreads evenly).
     const int N = o.rays;
+    const Observer& observer = find_observer(o.observer);
+    const double cos_head = head_cosine(observer);
+    m.observer = observer.name;
     Mean lr, leak;
     std::vector<double> by_kind(t.kinds().size(), 0.0);
     for (int i = 0; i < N; ++i) {
@@ -125,7 +133,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
             switch (t.kind_regions()[static_cast<size_t>(e.kind)]) {
                 case Region::Crown:
                     m.balance.crown += e.weight;
-                    returned += e.weight * diffuse_with_head(e.dir, kUp, eye.viewer);
+                    returned += e.weight * observer_radiance(e.dir, kUp, eye.viewer, cos_head);
                     break;
                 case Region::Girdle: m.balance.girdle += e.weight; break;
                 case Region::Pavilion:
@@ -135,7 +143,22 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
             }
         }
         m.balance.lost += tr.lost;
-        lr.add(returned);
+        // The observer's further tilts of the stone (gem_observer.h): the same light return
+        // from an eye sample of its own per tilt, the lights and the eye fixed in the world.
+        for (size_t k = 1; k < observer.tilts_deg.size(); ++k) {
+            Rng axis_rng(o.seed, 16 + k, static_cast<std::uint64_t>(i));
+            const double az = 2 * M_PI * axis_rng.uniform();
+            const Eigen::Matrix3d turn =
+                Eigen::AngleAxisd(observer.tilts_deg[k] * M_PI / 180.0, Vec3(std::cos(az), std::sin(az), 0))
+                    .toRotationMatrix();
+            const Vec3 up = turn.transpose() * kUp;  // the world's vertical in the stone's frame
+            const EyeSample te = eye_sample(gem, o.seed, 8 + k, i, o.viewer_cone_deg, o.frame, &turn);
+            t.trace(te.ray, band, exits);
+            for (const auto& e : exits)
+                if (e.kind >= 0 && t.kind_regions()[static_cast<size_t>(e.kind)] == Region::Crown)
+                    returned += e.weight * observer_radiance(e.dir, up, te.viewer, cos_head);
+        }
+        lr.add(returned / static_cast<double>(observer.tilts_deg.size()));
         leak.add(pav);
     }
     m.light_return = lr.metric();

@@ -39,6 +39,9 @@ struct MetricOptions {
     // distance of a vertex from the origin. Eye rays start 4·frame from the stone and are
     // drawn over the disk of radius 1.1·frame; the images span 2.1·frame.
     double frame = 1.0;
+    // The observer and lighting model of the light return (experiments/gem_observer.h):
+    // "aset" (the default), "sasian", "hemisphere", "tilt".
+    std::string observer = "aset";
 };
 
 // A measured value and its standard error (one sigma, from the ray statistics).
@@ -75,6 +78,7 @@ struct GemMetrics {
     // the coloured part r_b − min r of the returned spectrum (no luminance weight).
     std::vector<std::pair<double, double>> fire_spectrum;
     int light_return_rays = 0, fire_pixels = 0, scintillation_pixels = 0;  // as traced
+    std::string observer;  // MetricOptions::observer the light return was measured under
 };
 
 // Throws InputError (one line naming the option, its value and the allowed range) for
@@ -119,7 +123,8 @@ struct Fields<gem_metrics::GemMetrics> {
                                field("leakage", &G::leakage), field("scintillation", &G::scintillation),
                                field("leakage_by_kind", &G::leakage_by_kind), field("balance", &G::balance),
                                field("aset", &G::aset), field("rays", &G::light_return_rays),
-                               field("fire_pixels", &G::fire_pixels), field("scintillation_pixels", &G::scintillation_pixels));
+                               field("fire_pixels", &G::fire_pixels), field("scintillation_pixels", &G::scintillation_pixels),
+                               field("observer", &G::observer));
     }
 };
 

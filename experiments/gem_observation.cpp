@@ -9,6 +9,7 @@
 #include <refract/core/scene.h>
 #include <refract/core/spectrum/cie.h>
 #include <refract/core/tracer.h>
+#include <refract/experiments/gem_observer.h>
 #include <refract/geometry/error.h>
 
 namespace refract::gem_metrics {
@@ -21,7 +22,7 @@ double elevation_deg(const Vec3& d, const Vec3& up) { return std::asin(std::clam
 
 double diffuse_with_head(const Vec3& d, const Vec3& up, const Vec3& viewer) {
     static const double cos_head = std::cos(kHeadDeg * kDeg);
-    return d.dot(up) > 0.0 && d.dot(viewer) < cos_head ? 1.0 : 0.0;
+    return observer_radiance(d, up, viewer, cos_head);
 }
 
 double diffuse_with_head(const Vec3& d, const Vec3& up) { return diffuse_with_head(d, up, up); }
@@ -122,6 +123,11 @@ void validate(const MetricOptions& o) {
     if (!(o.viewer_cone_deg >= 0 && o.viewer_cone_deg <= 45)) bad("viewer_cone_deg", o.viewer_cone_deg, "[0, 45]");
     if (o.spot_rotations < 1 || o.spot_rotations > 4096) bad("spot_rotations", o.spot_rotations, "1..4096");
     if (!(o.frame > 0 && o.frame <= 1e6)) bad("frame", o.frame, "(0, 1e6]");
+    try {
+        find_observer(o.observer);
+    } catch (const InputError& e) {
+        throw InputError(std::string("gem metrics: ") + e.what());
+    }
 }
 
 std::vector<double> metric_wavelengths(const MetricOptions& o) {

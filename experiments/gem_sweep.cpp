@@ -187,7 +187,7 @@ void set_axis(Grid& grid, const Axis& axis) {
 }
 
 std::string fingerprint(const Sweep& s) {
-    std::string f = "refract sweep brilliant v2";  // v2: the ASET and balance columns
+    std::string f = "refract sweep brilliant v3";  // v2: the ASET and balance columns; v3: the observer
     for (const Axis& a : s.grid.axes) f += " " + a.name + "=" + a.text();
     const BrilliantCut& b = s.grid.base;
     f += " culet=" + number(b.culet) + " girdle_facets=" + std::to_string(b.girdle_facets) +
@@ -195,7 +195,7 @@ std::string fingerprint(const Sweep& s) {
     f += " material=" + s.metric.material + " rays=" + std::to_string(s.metric.rays) +
          " wavelengths=" + std::to_string(s.metric.wavelengths) +
          " polarisation=" + (s.metric.exact_polarisation ? "exact" : "natural") +
-         " seed=" + std::to_string(s.metric.seed);
+         " seed=" + std::to_string(s.metric.seed) + " observer=" + s.metric.observer;
     return f;
 }
 

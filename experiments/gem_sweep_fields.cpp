@@ -44,6 +44,7 @@ const std::vector<Field>& fields() {
         REFRACT_NUMBER("balance_pavilion", r.metrics.balance.pavilion),
         REFRACT_NUMBER("balance_lost", r.metrics.balance.lost),
         REFRACT_NUMBER("balance_missed", r.metrics.balance.missed),
+        Field{"observer", [](const Row& r) { return csv_quote(r.metrics.observer); }},
     };
     return f;
 }

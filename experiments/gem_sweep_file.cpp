@@ -140,6 +140,7 @@ nlohmann::json settings_json(const Sweep& s) {
             {"rays", s.metric.rays},
             {"wavelengths", s.metric.wavelengths},
             {"polarisation_model", s.metric.exact_polarisation ? "exact" : "natural"},
+            {"observer", s.metric.observer},
             {"seed", s.metric.seed},
             {"cuts", s.grid.size()},
             {"fingerprint", fingerprint(s)}};

@@ -143,7 +143,10 @@ TEST_CASE("sweep: the CSV gains the ASET shares and the energy balance, and its 
     REQUIRE(h.size() == v.size());
     std::map<std::string, double> cell;
     for (size_t k = 0; k < h.size(); ++k)
-        if (h[k] != "status" && h[k] != "reason" && h[k] != "leakage_by_kind") cell[h[k]] = std::stod(v[k]);
+        if (h[k] != "status" && h[k] != "reason" && h[k] != "leakage_by_kind" && h[k] != "observer")
+            cell[h[k]] = std::stod(v[k]);
+    CHECK(h.back() == "observer");
+    CHECK(v.back() == "aset");
     for (const char* f : {"aset_red", "aset_green", "aset_blue", "aset_white", "balance_crown", "balance_girdle",
                           "balance_pavilion", "balance_lost", "balance_missed"})
         REQUIRE(cell.count(f));
