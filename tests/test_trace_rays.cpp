@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -113,12 +114,11 @@ TEST_CASE("trace_rays in packets: each lane's sums are its own record's, whateve
         {"materials", {{"glass", {{"type", "dielectric"}, {"dispersion", "diamond"}}}}},
         {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
         {"render", {{"max_depth", 12}}}};
-    std::vector<std::shared_ptr<const Scene>> scenes{
-        std::make_shared<const Scene>(parse_scene(lone, "lone.json")),
-        std::make_shared<const Scene>(load_scene(REFRACT_SOURCE_DIR "/scenes/validation/absorbing-glass.json")),
-        std::make_shared<const Scene>(load_scene(REFRACT_SOURCE_DIR "/scenes/validation/dispersion-gem.json")),
-        std::make_shared<const Scene>(load_scene(REFRACT_SOURCE_DIR "/scenes/examples/glass-sphere.json"))};
-    for (const auto& scene : scenes) {
+    for (Scene s : {parse_scene(lone, "lone.json"), load_scene(REFRACT_SOURCE_DIR "/scenes/validation/absorbing-glass.json"),
+                    load_scene(REFRACT_SOURCE_DIR "/scenes/validation/dispersion-gem.json"),
+                    load_scene(REFRACT_SOURCE_DIR "/scenes/examples/glass-sphere.json")}) {
+        s.settings.requested_polarisation = PolarisationModel::Natural;  // packets carry natural light
+        const auto scene = std::make_shared<const Scene>(std::move(s));
         INFO(scene->source);
         const TraceSession session(scene);
         REQUIRE(session.tracer().packets());
