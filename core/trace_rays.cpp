@@ -1,7 +1,9 @@
 #include <refract/core/trace_rays.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <tbb/blocked_range.h>
@@ -17,6 +19,7 @@ namespace refract {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kBlock = 4096;  // rays walked in packets with one walker
 
 // What one ray's tree sums to (RayBatch's row), summed in the order its record holds the
 // segments (the walk's: RecordingEnds in trace_record.cpp).
@@ -53,21 +56,26 @@ public:
         sums_.radiance += trace_walk::light(e, weight_, tracer_.local_light(h, stats_));
     }
 
-    bool intercept(Walker& walker, const Entry& e, const SurfaceHit& h, typename Walker::List& list) {
+    // A hit of the ray's walk, before its node: a new segment (its weight kept for a leaf's
+    // light), the first hit noted, a dielectric's Rs and Rp summed (its record's describe():
+    // node_fresnel, 1 and 1 on total internal reflection).
+    void arrive(const Entry& e, const SurfaceHit& h) {
         weight_ = start(e);
         if (sums_.segments == 1) {
             sums_.point = h.hit.point;
             sums_.object = static_cast<int>(h.object - tracer_.scene().objects.data());
             sums_.facet = h.hit.facet;
         }
-        const Interaction in = trace_walk::interact(tracer_, e, h, *this, stats_);
-        if (!in.leaf) {
-            const NodeRecord r = describe(*h.material, in, h, e.ray, band_ior(e, h));
-            if (r.dielectric) {
-                sums_.Rs += r.Rs;
-                sums_.Rp += r.Rp;
-            }
+        if (const material::Dielectric* d = h.material->dielectric()) {
+            const material::NodeFresnel n = material::node_fresnel(*d, h, e.ray.dir, band_ior(e, h));
+            sums_.Rs += n.terms ? n.terms->Rs : 1.0;
+            sums_.Rp += n.terms ? n.terms->Rp : 1.0;
         }
+    }
+
+    bool intercept(Walker& walker, const Entry& e, const SurfaceHit& h, typename Walker::List& list) {
+        arrive(e, h);
+        const Interaction in = trace_walk::interact(tracer_, e, h, *this, stats_);
         trace_walk::expand(walker, e, h, in, list, *this, [](int) {});
         return true;
     }
@@ -93,6 +101,19 @@ private:
     Sums& sums_;
     RenderStats& stats_;
     Vec3 weight_{0, 0, 0};  // the current node's segment's
+};
+
+// The ends of up to kLanes rays walked as one packet (natural light): lane l's are ray l's,
+// each lane's branches ended in the order of its own walk.
+struct LaneSums {
+    static constexpr bool kInOrder = true;
+    const SceneTracer& tracer;
+    std::array<std::optional<SummingEnds<NaturalLight>>, kLanes> ends;
+
+    SummingEnds<NaturalLight>& lane(int l) { return *ends[static_cast<std::size_t>(l)]; }
+    void intercept_lanes(const LaneEntry& p, const LaneMask& m, const SceneTracer::LaneHits& h) {
+        for_each_lane(m, [&](int l) { lane(l).arrive(p.lane(l), tracer.surface_hit(h, l)); });
+    }
 };
 
 void store(RayBatch& b, std::size_t i, const Sums& s) {
@@ -148,8 +169,43 @@ RayBatch trace_rays(const TraceSession& session, const Vec3* origins, const Vec3
     const SceneTracer& tracer = session.tracer();
     const Scene& scene = tracer.scene();
     const TreeLimits limits = trace_walk::limits(scene);
-    // Rays [i0, i1) with one walker and one list, reused from ray to ray.
+    // Rays [i0, i1) kLanes at a time in packets, with one walker and one list (the walker keeps
+    // each packet's indices by its lanes' bands: a band here is a wavelength of the block).
+    const auto packets = [&](std::size_t i0, std::size_t i1) {
+        RenderStats stats;
+        RayTreeWalkerT<NaturalLight> walker(tracer, limits, stats);
+        FifoList<LaneEntry> list;
+        const auto nm_of = [&](std::size_t i) { return wavelengths_nm ? wavelengths_nm[i] : 0.0; };
+        std::vector<double> bands;
+        for (std::size_t i = i0; i < i1; ++i) bands.push_back(nm_of(i));
+        std::sort(bands.begin(), bands.end());
+        bands.erase(std::unique(bands.begin(), bands.end()), bands.end());
+        std::array<Sums, kLanes> sums;
+        for (std::size_t j0 = i0; j0 < i1; j0 += kLanes) {
+            const int m = static_cast<int>(std::min<std::size_t>(kLanes, i1 - j0));
+            LaneSums ends{tracer, {}};
+            LaneEntry p;
+            for (int l = 0; l < kLanes; ++l) {
+                const std::size_t i = j0 + static_cast<std::size_t>(std::min(l, m - 1));
+                const double nm = nm_of(i);
+                sums[static_cast<std::size_t>(l)] = Sums{};
+                ends.ends[static_cast<std::size_t>(l)].emplace(tracer, nm, sums[static_cast<std::size_t>(l)], stats);
+                TreeEntry e = trace_walk::root<NaturalLight>(scene, Ray{origins[i], dirs[i]}, dirs[i], nullptr);
+                e.band = static_cast<std::int16_t>(std::lower_bound(bands.begin(), bands.end(), nm) - bands.begin());
+                if (l == 0) p.fill(e);
+                if (l < m) p.set(l, e);
+            }
+            list.push_back(p);
+            walker.walk(list, ends);
+            for (int l = 0; l < m; ++l) store(b, j0 + static_cast<std::size_t>(l), sums[static_cast<std::size_t>(l)]);
+        }
+    };
+    // Rays [i0, i1) one by one, with one walker and one list, reused from ray to ray.
     const auto run = [&](std::size_t i0, std::size_t i1) {
+        if (tracer.packets()) {  // blocks of few enough wavelengths for the bands' 16 bits
+            for (std::size_t k = i0; k < i1; k += kBlock) packets(k, std::min(i1, k + kBlock));
+            return;
+        }
         RenderStats stats;
         const auto walk = [&](auto payload) {
             using P = decltype(payload);

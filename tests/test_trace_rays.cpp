@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include <refract/core/integrators/integrator.h>
 #include <refract/core/scene_json.h>
@@ -98,6 +101,36 @@ TEST_CASE("trace_rays: every ray's sums are its own record's to the last bit, on
         // Without wavelengths: RGB rays, as the record at 0 nm.
         const RayBatch rgb = trace_rays(session, r.o.data(), r.d.data(), nullptr, 8, 1);
         for (size_t i = 0; i < 8; ++i) check_against_record(*scene, rgb, i, session.ray(Ray{r.o[i], r.d[i]}));
+    }
+}
+
+TEST_CASE("trace_rays in packets: each lane's sums are its own record's, whatever its neighbours meet", "[trace]") {
+    // Packets of eight rays (natural light): lanes at other materials than their neighbours'
+    // (absorbing glass, a dispersive prism, mirrors, a checker floor, an emitter), a lone
+    // sphere whose escaping lanes would end early, a last packet partly empty.
+    const nlohmann::json lone = {
+        {"camera", {{"location", {0, 0, -4}}, {"look_at", {0, 0, 0}}, {"angle", 40}, {"width", 40}, {"height", 30}}},
+        {"background", {0.3, 0.5, 0.9}},
+        {"materials", {{"glass", {{"type", "dielectric"}, {"dispersion", "diamond"}}}}},
+        {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "glass"}}}},
+        {"render", {{"max_depth", 12}}}};
+    for (Scene s : {parse_scene(lone, "lone.json"), load_scene(REFRACT_SOURCE_DIR "/scenes/validation/absorbing-glass.json"),
+                    load_scene(REFRACT_SOURCE_DIR "/scenes/validation/dispersion-gem.json"),
+                    load_scene(REFRACT_SOURCE_DIR "/scenes/examples/glass-sphere.json")}) {
+        s.settings.requested_polarisation = PolarisationModel::Natural;  // packets carry natural light
+        const auto scene = std::make_shared<const Scene>(std::move(s));
+        INFO(scene->source);
+        const TraceSession session(scene);
+        REQUIRE(session.tracer().packets());
+        const Rays r = camera_rays(*scene, scene->camera.width / 13);
+        const size_t n = r.o.size() - 3;  // not a multiple of eight
+        const RayBatch b = trace_rays(session, r.o.data(), r.d.data(), r.nm.data(), n, 1);
+        int transparent = 0;
+        for (size_t i = 0; i < n; ++i) {
+            check_against_record(*scene, b, i, session.ray(Ray{r.o[i], r.d[i]}, r.nm[i]));
+            transparent += b.Rs[i] > 0;
+        }
+        CHECK(transparent > 8);
     }
 }
 

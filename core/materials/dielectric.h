@@ -6,6 +6,7 @@
 // (CompatRules::dielectric: the physical node of core/interaction.h, or POV-Ray's).
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <refract/core/material_rules.h>
@@ -56,17 +57,29 @@ inline const spectrum::Absorption* absorption(const Dielectric& m) { return m.ab
 inline bool in_packets(const Dielectric&) { return true; }
 // Exact polarisation needs the amplitudes: the Fresnel reflectance.
 inline bool carries_stokes(const Dielectric& m) { return m.reflectance == ReflectanceModel::Fresnel; }
-// The node's relative index, cosines and Fresnel reflectances (at the material's own ior
-// or the band's), and whether it reflected totally.
+// The node's relative index and cosine (at the material's own ior or the band's) and its
+// Fresnel terms (none: it reflects totally), as `refract trace` records them.
+struct NodeFresnel {
+    double eta, cos_i;
+    std::optional<optics::FresnelTerms> terms;
+};
+inline NodeFresnel node_fresnel(const Dielectric& m, const SurfaceHit& h, const Vec3& dir, double band_ior) {
+    const double ior = band_ior > 0 ? band_ior : m.ior;
+    NodeFresnel n{h.entering ? ior : 1.0 / ior, std::fmin(-dir.dot(h.normal), 1.0), std::nullopt};
+    n.terms = optics::fresnel(n.cos_i, n.eta);
+    return n;
+}
+// The node's relative index, cosines and Fresnel reflectances (node_fresnel), and whether
+// it reflected totally.
 inline NodeRecord describe(const Dielectric& m, const Interaction& in, const SurfaceHit& h, const Ray& ray,
                            double band_ior) {
     NodeRecord r;
     r.dielectric = true;
-    const double ior = band_ior > 0 ? band_ior : m.ior;
-    r.eta = h.entering ? ior : 1.0 / ior;
-    r.cos_i = std::fmin(-ray.dir.dot(h.normal), 1.0);
+    const NodeFresnel n = node_fresnel(m, h, ray.dir, band_ior);
+    r.eta = n.eta;
+    r.cos_i = n.cos_i;
     r.R = in.reflectance;
-    if (const auto f = optics::fresnel(r.cos_i, r.eta)) {
+    if (const auto& f = n.terms) {
         r.Rs = f->Rs;
         r.Rp = f->Rp;
         r.cos_t = f->cos_t;
