@@ -23,8 +23,6 @@
 //        left the scene, at once
 //   void intercept_lanes(const LaneEntry&, const LaneMask&, const LaneHits&)   the lanes of
 //        a packet that met a surface, before their nodes (to look, not to take over)
-//   static constexpr bool kInOrder = true   sums that depend on the order in which each
-//        lane's branches end: no lane is ended before its turn (queue())
 //
 // A step (⑤–⑥) is the same for one ray and for a packet: the search, the background of
 // the rays that met nothing, Beer–Lambert over the segment (one place), then the node.
@@ -233,11 +231,6 @@ template <class Ends>
 struct InterceptLanes<Ends, std::void_t<decltype(std::declval<Ends&>().intercept_lanes(
                                 std::declval<const LaneEntry&>(), std::declval<const LaneMask&>(),
                                 std::declval<const SceneTracer::LaneHits&>()))>> : std::true_type {};
-// Ends whose sums depend on the order in which each lane's branches end.
-template <class Ends, class = void>
-struct InOrder : std::false_type {};
-template <class Ends>
-struct InOrder<Ends, std::void_t<decltype(Ends::kInOrder)>> : std::bool_constant<Ends::kInOrder> {};
 
 template <class P>
 class RayTreeWalkerT {
@@ -694,15 +687,11 @@ private:
     }
 
     // The packets `child` (in this order) onto the list, the lanes known to leave the scene
-    // ended at once (as the walk would end them, but before their turn: not for ends in order).
+    // ended at once (as the walk would end them).
     template <class Ends>
     void queue(Packet (&child)[2], Packets& list, Ends& ends) {
         for (Packet& c : child) {
             if (!c.active.any()) continue;
-            if constexpr (InOrder<Ends>::value) {
-                list.push_back(c);
-                continue;
-            }
             const LaneMask gone = tracer_.escaping_lanes(c.from, c.ray.origin, c.ray.dir, c.active, stats_);
             if (gone.any()) {
                 background_lanes(c, gone, ends);
