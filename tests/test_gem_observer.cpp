@@ -124,7 +124,7 @@ TEST_CASE("refract metrics and refract sweep take --observer: an unknown name ex
         names);
     CHECK_FALSE(fs::exists(dir / "b.csv"));
     CHECK_FALSE(fs::exists(dir / "b.csv.journal"));
-    test::check_refused(test::run("sweep design " + design + " --tier 1:40:41:1" + fast + " --observer cyclops -o " +
+    test::check_refused(test::run("sweep design " + design + " --tier P1:40:41:1" + fast + " --observer cyclops -o " +
                                       (dir / "d.csv").string(),
                                   dir),
                         names);
@@ -141,7 +141,7 @@ TEST_CASE("refract metrics and refract sweep take --observer: an unknown name ex
                       dir)
                 .code == 0);
     CHECK(last_cells(dir / "s.csv") == "observer=sasian");
-    REQUIRE(test::run("sweep design " + design + " --tier 1:40:41:1" + fast + " -o " + (dir / "e.csv").string(), dir)
+    REQUIRE(test::run("sweep design " + design + " --tier P1:40:41:1" + fast + " -o " + (dir / "e.csv").string(), dir)
                 .code == 0);
     CHECK(last_cells(dir / "e.csv") == "observer=aset");
     fs::remove_all(dir);
