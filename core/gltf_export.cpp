@@ -32,20 +32,6 @@ json matrix(const Eigen::Matrix3d& A, const Vec3& t) {
     return m;
 }
 
-std::string base64(const std::string& in) {
-    static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((in.size() + 2) / 3 * 4);
-    for (size_t i = 0; i < in.size(); i += 3) {
-        const auto b = [&](size_t j) { return j < in.size() ? static_cast<unsigned char>(in[j]) : 0u; };
-        const unsigned v = b(i) << 16 | b(i + 1) << 8 | b(i + 2);
-        out += k[v >> 18 & 63];
-        out += k[v >> 12 & 63];
-        out += i + 1 < in.size() ? k[v >> 6 & 63] : '=';
-        out += i + 2 < in.size() ? k[v & 63] : '=';
-    }
-    return out;
-}
 
 void put32(std::string& s, std::uint32_t v) {
     for (int k = 0; k < 4; ++k) s += static_cast<char>(v >> (8 * k) & 0xff);
@@ -286,6 +272,22 @@ struct Writer {
 };
 
 }  // namespace
+
+// Base64 (RFC 4648 §4, with padding): a glTF buffer as a data URI.
+std::string base64(const std::string& in) {
+    static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((in.size() + 2) / 3 * 4);
+    for (size_t i = 0; i < in.size(); i += 3) {
+        const auto b = [&](size_t j) { return j < in.size() ? static_cast<unsigned char>(in[j]) : 0u; };
+        const unsigned v = b(i) << 16 | b(i + 1) << 8 | b(i + 2);
+        out += k[v >> 18 & 63];
+        out += k[v >> 12 & 63];
+        out += i + 1 < in.size() ? k[v >> 6 & 63] : '=';
+        out += i + 2 < in.size() ? k[v & 63] : '=';
+    }
+    return out;
+}
 
 GltfExport export_gltf(const Scene& s, bool binary) {
     GltfExport out;

@@ -37,6 +37,9 @@ struct GltfExport {
 // dielectrics with KHR_materials_transmission, _ior, _volume and _dispersion.
 GltfExport export_gltf(const Scene& s, bool binary);
 
+// Base64 (RFC 4648 §4, with padding), as glTF's data URIs carry a buffer.
+std::string base64(const std::string& in);
+
 // glTF's frame to refract's: the mirror z → −z (glTF is right-handed, refract's camera
 // POV-Ray's left-handed one); its own inverse, so the import and the export both use it.
 inline Eigen::Matrix4d gltf_mirror() { return Eigen::Vector4d(1, 1, -1, 1).asDiagonal(); }

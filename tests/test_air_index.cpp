@@ -7,21 +7,15 @@
 #include <refract/core/grin/air_index.h>
 #include <refract/geometry/error.h>
 
+#include "input_error.h"
+
 using namespace refract;
 using namespace refract::grin;
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
 
 namespace {
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using refract::test::error_of;
 
 AirState air(double t_celsius, double p_kPa, double rh_percent) {
     AirState s;

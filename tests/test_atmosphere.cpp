@@ -8,6 +8,8 @@
 #include <refract/core/grin/atmosphere.h>
 #include <refract/geometry/error.h>
 
+#include "input_error.h"
+
 using namespace refract;
 using namespace refract::grin;
 using Catch::Matchers::Contains;
@@ -15,15 +17,7 @@ using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
 namespace {
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using refract::test::error_of;
 }  // namespace
 
 TEST_CASE("U.S. Standard Atmosphere 1976: temperature and pressure at the layer bases", "[grin][atmosphere]") {

@@ -24,20 +24,6 @@ using nlohmann::json;
 
 namespace {
 
-std::string base64(const std::string& in) {
-    static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < in.size(); i += 3) {
-        const auto b = [&](size_t j) { return j < in.size() ? static_cast<unsigned char>(in[j]) : 0u; };
-        const unsigned v = b(i) << 16 | b(i + 1) << 8 | b(i + 2);
-        out += k[v >> 18 & 63];
-        out += k[v >> 12 & 63];
-        out += i + 1 < in.size() ? k[v >> 6 & 63] : '=';
-        out += i + 2 < in.size() ? k[v & 63] : '=';
-    }
-    return out;
-}
-
 // A unit cube (counter-clockwise seen from outside) as a .gltf with its buffer embedded, the
 // cube's node translated by `at` (and mirrored in x when `mirror`), a camera at the origin
 // looking along glTF's −z (its default) and a point light at the camera.

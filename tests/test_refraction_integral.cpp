@@ -11,6 +11,8 @@
 #include <refract/core/grin/refraction_integral.h>
 #include <refract/geometry/error.h>
 
+#include "input_error.h"
+
 using namespace refract;
 using namespace refract::grin;
 using Catch::Matchers::Contains;
@@ -20,15 +22,7 @@ namespace {
 constexpr double kArcsec = 180.0 / M_PI * 3600.0;  // arcseconds per radian
 double rad(double deg) { return deg * M_PI / 180.0; }
 
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using refract::test::error_of;
 
 // Bennett's conditions: 10 °C and 101.0 kPa at sea level.
 Atmosphere bennett_atmosphere() {

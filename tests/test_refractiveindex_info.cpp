@@ -16,6 +16,8 @@
 #include <refract/core/spectrum/refractiveindex_info.h>
 #include <refract/geometry/error.h>
 
+#include "input_error.h"
+
 #include "tests/temp_dir.h"
 
 using namespace refract;
@@ -40,15 +42,7 @@ double n_of(const std::string& yaml, double nm) {
     return read_refractiveindex_info(write_entry("f.yml", yaml)).dispersion.n(nm);
 }
 
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using refract::test::error_of;
 
 }  // namespace
 

@@ -11,21 +11,14 @@
 #include <refract/core/spectrum/wavelengths.h>
 #include <refract/geometry/error.h>
 
+#include "input_error.h"
+
 using namespace refract;
 using namespace refract::spectrum;
 using Catch::Matchers::Contains;
 
 namespace {
-// The message of the InputError that f throws ("" if none).
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using refract::test::error_of;
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
