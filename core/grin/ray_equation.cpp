@@ -10,26 +10,36 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+
+#include <refract/core/grin/rytov.h>
 
 namespace refract::grin {
 
 namespace {
 
-// y = (r, T, optical path, length); y′ = (T, n∇n, n², n) with ′ = d/dt, dt = ds/n.
-using State = Eigen::Matrix<double, 8, 1>;
+// y = (r, T, optical path, length); y′ = (T, n∇n, n², n) with ′ = d/dt, dt = ds/n. With a
+// polarisation frame (N = 11) also e, y′ = … Ω × e (core/grin/rytov.h): the same stages and
+// the same error test. N = 8 is the integrator without it, the same code as before it.
+constexpr int kRay = 8, kRayAndFrame = 11;
+template <int N>
+using State = Eigen::Matrix<double, N, 1>;
 
+template <int N>
 struct Rhs {
     const Profile& profile;
     double lambda_um;
     long evaluations = 0;
-    State operator()(const State& y) {
+    State<N> operator()(const State<N>& y) {
         ++evaluations;
-        const IndexGradient g = index_and_gradient(profile, Vec3(y.head<3>()), lambda_um);
-        State f;
-        f.head<3>() = y.segment<3>(3);
-        f.segment<3>(3) = g.n * g.grad;
+        const IndexGradient g = index_and_gradient(profile, Vec3(y.template head<3>()), lambda_um);
+        State<N> f;
+        f.template head<3>() = y.template segment<3>(3);
+        f.template segment<3>(3) = g.n * g.grad;
         f[6] = g.n * g.n;
         f[7] = g.n;
+        if constexpr (N == kRayAndFrame)
+            f.template tail<3>() = rytov_rate(y.template segment<3>(3), f.template segment<3>(3), y.template tail<3>());
         return f;
     }
 };
@@ -52,23 +62,26 @@ constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 3270041
 
 // One step of size h from y0 with k1 = f(y0): the new state, its derivative k7 (FSAL: the
 // next step's k1), the error estimate and the dense output's coefficients.
+template <int N>
 struct Step {
-    State y1, k7, err;
-    std::array<State, 5> cont;  // y(θ) = c0 + θ(c1 + (1−θ)(c2 + θ(c3 + (1−θ) c4)))
+    State<N> y1, k7, err;
+    std::array<State<N>, 5> cont;  // y(θ) = c0 + θ(c1 + (1−θ)(c2 + θ(c3 + (1−θ) c4)))
 
-    State at(double th) const {
+    State<N> at(double th) const {
         const double th1 = 1.0 - th;
         return cont[0] + th * (cont[1] + th1 * (cont[2] + th * (cont[3] + th1 * cont[4])));
     }
 };
 
-Step dp_step(Rhs& f, const State& y0, const State& k1, double h) {
+template <int N>
+Step<N> dp_step(Rhs<N>& f, const State<N>& y0, const State<N>& k1, double h) {
+    using State = State<N>;
     const State k2 = f(y0 + h * (a21 * k1));
     const State k3 = f(y0 + h * (a31 * k1 + a32 * k2));
     const State k4 = f(y0 + h * (a41 * k1 + a42 * k2 + a43 * k3));
     const State k5 = f(y0 + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4));
     const State k6 = f(y0 + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5));
-    Step s;
+    Step<N> s;
     s.y1 = y0 + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
     s.k7 = f(s.y1);
     s.err = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * s.k7);
@@ -82,9 +95,10 @@ Step dp_step(Rhs& f, const State& y0, const State& k1, double h) {
     return s;
 }
 
-double error_norm(const State& err, const State& y0, const State& y1, const Settings& s) {
+template <int N>
+double error_norm(const State<N>& err, const State<N>& y0, const State<N>& y1, const Settings& s) {
     double m = 0.0;
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < N; ++i) {
         const double sc = s.abs_tol + s.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
         const double e = std::abs(err[i]) / sc;
         if (!(e <= m)) m = e;  // NaN too
@@ -93,10 +107,12 @@ double error_norm(const State& err, const State& y0, const State& y1, const Sett
 }
 
 // The first step (Hairer, Nørsett & Wanner, §II.4, "starting step size").
-double initial_step(Rhs& f, const State& y0, const State& k1, const Settings& s) {
+template <int N>
+double initial_step(Rhs<N>& f, const State<N>& y0, const State<N>& k1, const Settings& s) {
+    using State = State<N>;
     auto norm = [&](const State& v) {
         double m = 0.0;
-        for (int i = 0; i < 8; ++i) m = std::max(m, std::abs(v[i]) / (s.abs_tol + s.rel_tol * std::abs(y0[i])));
+        for (int i = 0; i < N; ++i) m = std::max(m, std::abs(v[i]) / (s.abs_tol + s.rel_tol * std::abs(y0[i])));
         return m;
     };
     const double dn0 = norm(y0), dn1 = norm(k1);
@@ -147,42 +163,66 @@ double brent(G&& g, double a, double b, double fa, double fb, double tol) {
     return b;
 }
 
-PathSample sample(const State& y) { return {Vec3(y.head<3>()), Vec3(y.segment<3>(3).normalized())}; }
+// The transported frame vector of y, unit and ⟂ its direction (zero without one).
+template <int N>
+Vec3 frame_of(const State<N>& y, const Vec3& dir) {
+    if constexpr (N == kRayAndFrame) return transverse_unit(y.template tail<3>(), dir);
+    else return Vec3::Zero();
+}
 
-void finish(Result& r, const State& y, const State& f, Status status, long evaluations) {
+template <int N>
+PathSample sample(const State<N>& y) {
+    const Vec3 dir = y.template segment<3>(3).normalized();
+    return {Vec3(y.template head<3>()), dir, frame_of<N>(y, dir)};
+}
+
+template <int N>
+void finish(Result& r, const State<N>& y, const State<N>& f, Status status, long evaluations) {
     r.status = status;
-    r.exit_point = y.head<3>();
-    r.exit_dir = y.segment<3>(3).normalized();
+    r.exit_point = y.template head<3>();
+    r.exit_dir = y.template segment<3>(3).normalized();
     r.exit_index = f[7];
     r.optical_path = y[6];
     r.length = y[7];
     r.evaluations = evaluations;
+    r.exit_frame = frame_of<N>(y, r.exit_dir);
 }
 
-}  // namespace
-
-Result advance(const Profile& profile, const Region& region, const Vec3& x0, const Vec3& dir0, double lambda_um,
-               const Settings& s) {
-    Rhs f{profile, lambda_um};
+template <int N>
+Result advance_with(const Profile& profile, const Region& region, const Vec3& x0, const Vec3& dir0, double lambda_um,
+                    const Settings& s) {
+    using State = State<N>;
+    using Step = Step<N>;
+    Rhs<N> f{profile, lambda_um};
     Result res;
     State y;
-    y << x0, index(profile, x0, lambda_um) * dir0.normalized(), 0.0, 0.0;
+    if constexpr (N == kRayAndFrame) {
+        const Vec3 d = dir0.normalized(), e0 = transverse_unit(s.frame, d);
+        if (e0.isZero())
+            throw std::invalid_argument(
+                "grin::advance: Settings::frame must be finite and not parallel to the direction");
+        y << x0, index(profile, x0, lambda_um) * d, 0.0, 0.0, e0;
+    } else {
+        y << x0, index(profile, x0, lambda_um) * dir0.normalized(), 0.0, 0.0;
+    }
     State k1 = f(y);
     const bool fixed = s.fixed_step > 0;
-    double h = fixed ? s.fixed_step : initial_step(f, y, k1, s);
+    double h = fixed ? s.fixed_step : initial_step<N>(f, y, k1, s);
     // On the boundary: within 1e-14 of the region's size (or of the coordinates, past it).
     const double scale = length_scale(region);
-    auto boundary_tol = [scale](const State& ys) { return 1e-14 * (scale + ys.head<3>().cwiseAbs().maxCoeff()); };
-    if (s.record_path) res.path.push_back(sample(y));
+    auto boundary_tol = [scale](const State& ys) {
+        return 1e-14 * (scale + ys.template head<3>().cwiseAbs().maxCoeff());
+    };
+    if (s.record_path) res.path.push_back(sample<N>(y));
     bool just_rejected = false;
     double err_old = 1e-4;
     for (int tries = 0;; ++tries) {
         if (tries >= s.max_steps) {
-            finish(res, y, k1, Status::budget_exhausted, f.evaluations);
+            finish<N>(res, y, k1, Status::budget_exhausted, f.evaluations);
             return res;
         }
-        const Step st = dp_step(f, y, k1, h);
-        const double g1 = signed_distance(region, Vec3(st.y1.head<3>()));
+        const Step st = dp_step<N>(f, y, k1, h);
+        const double g1 = signed_distance(region, Vec3(st.y1.template head<3>()));
         if (g1 > 0 && std::isfinite(g1)) {
             // The trial step leaves the region: the crossing is the root of the signed
             // distance along its dense output (Brent, to 1e-12 of the step), then Newton on
@@ -190,25 +230,25 @@ Result advance(const Profile& profile, const Region& region, const Vec3& x0, con
             // boundary to 1e-14 of the region's size. That step, whose stages stay inside
             // (the profile need not be smooth across the boundary), is the one the error
             // test accepts or rejects.
-            auto g = [&](double th) { return signed_distance(region, Vec3(st.at(th).head<3>())); };
+            auto g = [&](double th) { return signed_distance(region, Vec3(st.at(th).template head<3>())); };
             // A start on the boundary (|distance| within rounding) counts as just inside.
             double tau = h * brent(g, 0.0, 1.0, std::min(g(0.0), -boundary_tol(y)), g1, 1e-12);
-            Step end = dp_step(f, y, k1, tau);
+            Step end = dp_step<N>(f, y, k1, tau);
             bool on_boundary = false;
             for (int it = 0; it < 8; ++it) {
-                const Vec3 xe = end.y1.head<3>();
+                const Vec3 xe = end.y1.template head<3>();
                 const double ge = signed_distance(region, xe);
                 if ((on_boundary = std::abs(ge) <= boundary_tol(end.y1))) break;
-                const double slope = outward_normal(region, xe).dot(end.y1.segment<3>(3));
+                const double slope = outward_normal(region, xe).dot(end.y1.template segment<3>(3));
                 if (!(slope > 0)) break;
                 tau = std::clamp(tau - ge / slope, 0.0, 2.0 * h);
-                end = dp_step(f, y, k1, tau);
+                end = dp_step<N>(f, y, k1, tau);
             }
-            const double err = fixed ? 0.0 : error_norm(end.err, y, end.y1, s);
+            const double err = fixed ? 0.0 : error_norm<N>(end.err, y, end.y1, s);
             if (fixed || (on_boundary && err <= 1.0)) {
                 ++res.steps;
-                if (s.record_path) res.path.push_back(sample(end.y1));
-                finish(res, end.y1, end.k7, Status::left_region, f.evaluations);
+                if (s.record_path) res.path.push_back(sample<N>(end.y1));
+                finish<N>(res, end.y1, end.k7, Status::left_region, f.evaluations);
                 return res;
             }
             ++res.rejected;
@@ -219,7 +259,7 @@ Result advance(const Profile& profile, const Region& region, const Vec3& x0, con
         }
         double err = 0.0;
         if (!fixed) {
-            err = error_norm(st.err, y, st.y1, s);
+            err = error_norm<N>(st.err, y, st.y1, s);
             if (!(err <= 1.0)) {
                 ++res.rejected;
                 h *= std::max(0.2, std::isfinite(err) ? 0.9 * std::pow(err, -0.2) : 0.2);
@@ -230,7 +270,7 @@ Result advance(const Profile& profile, const Region& region, const Vec3& x0, con
         ++res.steps;
         y = st.y1;
         k1 = st.k7;
-        if (s.record_path) res.path.push_back(sample(y));
+        if (s.record_path) res.path.push_back(sample<N>(y));
         if (!fixed) {
             // Gustafsson's PI control as in Hairer's DOPRI5 (β = 0.04): the new step from
             // this error and the last accepted one, growth at most 10×, none after a rejection.
@@ -241,6 +281,14 @@ Result advance(const Profile& profile, const Region& region, const Vec3& x0, con
         }
         just_rejected = false;
     }
+}
+
+}  // namespace
+
+Result advance(const Profile& profile, const Region& region, const Vec3& x0, const Vec3& dir0, double lambda_um,
+               const Settings& s) {
+    return s.frame.isZero() ? advance_with<kRay>(profile, region, x0, dir0, lambda_um, s)
+                            : advance_with<kRayAndFrame>(profile, region, x0, dir0, lambda_um, s);
 }
 
 }  // namespace refract::grin

@@ -9,7 +9,8 @@
 //
 // advance() is what a walker calls for a ray inside a GRIN object: from a point and a
 // direction until the ray leaves the region (the crossing found by root finding on the
-// step's dense output, then polished on the true step) or the step budget runs out.
+// step's dense output, then polished on the true step) or the step budget runs out. With
+// Settings::frame it also carries a polarisation frame along the ray (Rytov's law).
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,12 @@ struct Settings {
     double fixed_step = 0.0;
     // Record the points and directions along the ray (the start, every step's end, the exit).
     bool record_path = false;
+    // Non-zero: a polarisation frame vector at the start, parallel-transported along the ray
+    // (Rytov's law, core/grin/rytov.h) in the same steps, with the same error test, and
+    // returned as Result::exit_frame. Its component along dir0 is removed and it is
+    // normalised; one parallel to dir0 or not finite is a std::invalid_argument. Zero: off
+    // (the integrator then runs as without it, to the bit).
+    Vec3 frame = Vec3::Zero();
 };
 
 enum class Status {
@@ -38,7 +45,8 @@ enum class Status {
 
 struct PathSample {
     Vec3 x;
-    Vec3 dir;  // unit
+    Vec3 dir;                   // unit
+    Vec3 frame = Vec3::Zero();  // with Settings::frame: the transported vector, unit, ⟂ dir
 };
 
 struct Result {
@@ -51,6 +59,10 @@ struct Result {
     int steps = 0;                 // accepted
     int rejected = 0;
     long evaluations = 0;          // index-and-gradient evaluations
+    // With Settings::frame: the frame vector transported to the exit point, unit and ⟂
+    // exit_dir (a Stokes vector in the start's frame (frame, dir0 × frame) is the same in
+    // (exit_frame, exit_dir × exit_frame)); zero otherwise.
+    Vec3 exit_frame = Vec3::Zero();
     std::vector<PathSample> path;  // with Settings::record_path
 };
 
