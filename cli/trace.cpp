@@ -40,6 +40,11 @@ nlohmann::json to_json(const refract::TraceRecord& r, const std::string& scene) 
             j["facet"] = s.facet;
             if (!s.facet_label.empty()) j["facet_label"] = s.facet_label;
             j["entering"] = s.entering;
+            if (!s.path.empty()) {
+                json pts = json::array();
+                for (const auto& x : s.path) pts.push_back(vec(x));
+                j["path"] = pts;
+            }
             if (s.eta > 0) {
                 j["eta"] = s.eta;
                 j["cos_i"] = s.cos_i;

@@ -168,6 +168,9 @@ void CompatRules::validate(const Scene& scene) const {
             throw InputError(f + ": material '" + clip_echo(m.name) +
                              "': a uniaxial crystal needs the physical mode and the fresnel-tree integrator (or the "
                              "spectral eye pass): its rays carry their o/e wave along the ray tree");
+        else if (m.is<material::Grin>())
+            throw InputError(f + ": material '" + clip_echo(m.name) +
+                             "': a gradient-index medium needs the physical mode (POV-Ray has no curved rays)");
 }
 
 }  // namespace refract

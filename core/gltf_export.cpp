@@ -133,6 +133,9 @@ struct Writer {
         if (const auto* d = m.as<material::Dielectric>()) {
             if (d->reflectance != ReflectanceModel::Fresnel) warn(item, "reflectance model exported as Fresnel's");
             g = dielectric(m, d->ior, d->dispersion, d->filter, d->absorption ? &*d->absorption : nullptr, item);
+        } else if (const auto* gr = m.as<material::Grin>()) {
+            warn(item, "gradient-index medium exported as a dielectric of its index at the scene's origin (glTF has no gradient index)");
+            g = dielectric(m, gr->index_at(Vec3::Zero(), 0.0), std::nullopt, gr->filter, nullptr, item);
         } else if (const auto* u = m.as<material::Uniaxial>()) {
             warn(item, "uniaxial crystal exported as an isotropic dielectric of its ordinary index");
             g = dielectric(m, u->ordinary.nominal(), u->ordinary, u->filter, nullptr, item);

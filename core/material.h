@@ -13,6 +13,7 @@
 #include <refract/core/materials/dielectric.h>
 #include <refract/core/materials/diffuse.h>
 #include <refract/core/materials/emissive.h>
+#include <refract/core/materials/grin.h>
 #include <refract/core/materials/lambertian.h>
 #include <refract/core/materials/metal.h>
 #include <refract/core/materials/mirror.h>
@@ -22,7 +23,7 @@ namespace refract {
 
 struct Material {
     using Kind = std::variant<material::Diffuse, material::Lambertian, material::Mirror, material::Metal,
-                              material::Emissive, material::Dielectric, material::Uniaxial>;
+                              material::Emissive, material::Dielectric, material::Uniaxial, material::Grin>;
     std::string name;
     Kind kind;
 

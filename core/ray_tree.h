@@ -270,7 +270,8 @@ public:
             } else {
                 TreeEntryT<P, S> e = list.front();
                 list.pop_front();
-                const auto h = search(e);
+                std::optional<SurfaceHit> h;
+                if (!search(e, h, ends)) continue;  // lost in a gradient-index medium
                 if (met(e, h, ends)) arrive(e, h, list, ends);
             }
             if (list.size() > peak) peak = list.size();
@@ -542,6 +543,27 @@ private:
 
     // ⑤ the search: the nearest hit of one ray, or of each lane of a packet.
     std::optional<SurfaceHit> search(const Entry& e) { return tracer_.intersect(e.ray, stats_, e.from); }
+    // One ray inside a gradient-index medium (docs/grin.md): its curved segment to the
+    // medium's boundary (SceneTracer::through, which turns e.ray to the direction it arrives
+    // in, hit.t its curved length, and carries an exact payload's Stokes frame along the ray
+    // by Rytov's law: the Stokes vector is unchanged in the transported frame), else the
+    // straight search. False when the step budget ran
+    // out on the way: its light is lost, counted with the limits'. (Packets never meet one:
+    // a medium's rays ride alone, in_packets.)
+    template <class Ends>
+    bool search(Entry& e, std::optional<SurfaceHit>& h, Ends& ends) {
+        if (const grin::Medium* m = tracer_.medium_of(e.ray, e.from)) {
+            if constexpr (std::is_same_v<P, NaturalLight>) {
+                h = tracer_.through(*m, e.ray, ends.wavelength(e), stats_);
+            } else {  // the Stokes frame transported along the curved ray (Rytov's law)
+                h = tracer_.through(*m, e.ray, ends.wavelength(e), stats_, &e.pol.x);
+            }
+            if (!h) *sink_.limits += band_weighted_mean(e.weight, e.band) * throughput(e.pol);
+            return h.has_value();
+        }
+        h = search(e);
+        return true;
+    }
     SceneTracer::LaneHits search(const Packet& p) {
         return tracer_.intersect_lanes(p.ray.origin, p.ray.dir, p.active, p.from, stats_);
     }

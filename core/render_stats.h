@@ -22,7 +22,8 @@ struct RenderStats {
     // dropped them. Eye passes only (the Fresnel tree, the spectral pass, the stochastic
     // integrator's last bounce); Whitted's stored tree has no weights while it grows.
     double lost_depth = 0;       // max_depth
-    double lost_limits = 0;      // the spectral pass's max_reflections / max_transmissions
+    double lost_limits = 0;      // the spectral pass's max_reflections / max_transmissions, a
+                                 // gradient-index medium's step budget
     double lost_threshold = 0;   // the pruning threshold
     std::uint64_t peak_list = 0;       // fresnel-tree: longest FIFO list; whitted: largest stored tree
     // Spectral eye pass (core/integrators/spectral.h).
@@ -33,6 +34,9 @@ struct RenderStats {
     // Segments leaving a facet of a convex plane set (core/tracer.h): decided from the planes
     // around the facet and a guessed leaving facet, or by the full plane loop.
     std::uint64_t facet_local = 0, facet_full = 0;
+    // Curved segments through gradient-index media (core/grin/): their index-and-gradient
+    // evaluations, and those that ran out of steps (their light counted in lost_limits).
+    std::uint64_t grin_segments = 0, grin_evaluations = 0, grin_exhausted = 0;
     // Light pass (core/light_pass.h).
     std::uint64_t photons = 0;              // photons shot
     std::uint64_t photon_segments = 0;      // their ray segments
@@ -71,6 +75,9 @@ struct Fields<RenderStats> {
             field("wavelength_segments", &S::wavelength_segments).text("wavelength segs", true),
             field("facet_local", &S::facet_local).text("facet segs, local", true),
             field("facet_full", &S::facet_full).text("facet segs, full", true),
+            field("grin_segments", &S::grin_segments).text("GRIN segments", true),
+            field("grin_evaluations", &S::grin_evaluations).text("GRIN evaluations", true),
+            field("grin_exhausted", &S::grin_exhausted).text("GRIN budget runs", true),
             field("photons", &S::photons).text("photons", true),
             field("photon_segments", &S::photon_segments).text("photon segments", true),
             field("deposits", &S::deposits).text("map deposits", true),

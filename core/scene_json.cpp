@@ -550,7 +550,7 @@ Scene parse_scene(const json& j, const std::string& file) {
                           root.child("render").raw("spectral").is_boolean() &&
                           !root.child("render").raw("spectral").get<bool>();
     for (const Material& m : s.materials)
-        if (!rgb_only && ((m.dielectric() && m.dielectric()->dispersion) || m.is<material::Uniaxial>()))
+        if (!rgb_only && dispersive(m))
             s.settings.spectral.enabled = true;
     if (s.settings.light_pass.enabled) s.settings.spectral.enabled = true;  // the maps are read by the spectral pass
     return s;

@@ -74,7 +74,10 @@ public:
             }
         }
         const int id = s.id;  // `s` moves as the children's segments are added later
-        trace_walk::expand(walker, e, h, in, list, *this, [&](int) { parents_.push_back(id); });
+        trace_walk::expand(walker, e, h, in, list, *this, [&](int b) {
+            parents_.push_back(id);
+            departures_.push_back(in.branch[static_cast<size_t>(b)].ray.dir);
+        });
         return true;
     }
 
@@ -91,7 +94,9 @@ private:
                                                 " segments, the most a trace records");
         TraceSegment& s = rec_.segments.emplace_back();
         s.id = static_cast<int>(rec_.segments.size() - 1);
+        const Vec3 departure = s.id == 0 ? root_dir_ : departures_[next_parent_];
         s.parent = s.id == 0 ? -1 : parents_[next_parent_++];
+        curved_path(s, e, departure);
         s.depth = e.depth;
         s.reflections = e.reflections;
         s.transmissions = e.transmissions;
@@ -116,10 +121,27 @@ private:
         return s;
     }
 
+    // A segment inside a gradient-index medium: its curved path, the walk's own (the same
+    // integration from the same start: the walker turned e.ray to its arrival direction).
+    void curved_path(TraceSegment& s, const Entry& e, const Vec3& departure) const {
+        const grin::Medium* m = tracer_.medium_of(Ray{e.ray.origin, departure}, e.from);
+        if (!m) return;
+        grin::Settings st = m->settings;
+        st.record_path = true;
+        const grin::Result r = grin::advance(m->profile, m->region, e.ray.origin, departure,
+                                             (nm_ > 0 ? nm_ : spectrum::fraunhofer::D) * 1e-3, st);
+        for (const grin::PathSample& p : r.path) s.path.push_back(p.x);
+    }
+
+public:
+    Vec3 root_dir_{0, 0, 1};  // the root ray's direction as given (the walk may turn it)
+
+private:
     const SceneTracer& tracer_;
     double nm_;
     TraceRecord& rec_;
     RenderStats& stats_;
+    std::vector<Vec3> departures_;  // the direction each entry pushed leaves its node in
     std::vector<int> parents_;  // the parent of each entry pushed, in the list's order
     size_t next_parent_ = 0;    // that of the next entry popped
     std::vector<const Material*> hit_material_;  // per segment, the material at its end
@@ -155,6 +177,7 @@ TraceRecord walk_record(const SceneTracer& tracer, const Scene& scene, const Ray
         using P = decltype(payload);
         RayTreeWalkerT<P> walker(tracer, limits, stats);
         RecordingEnds<P> ends(tracer, wavelength_nm, rec, stats);
+        ends.root_dir_ = dir;
         typename RayTreeWalkerT<P>::List list{trace_walk::root<P>(scene, ray, dir, polarisation)};
         walker.walk(list, ends);
     };

@@ -30,7 +30,10 @@ struct TraceSegment {
     // absent), "total internal reflection".
     std::string event;
     bool hit = false;
-    double length = 0;  // to the hit
+    double length = 0;  // to the hit (inside a gradient-index medium: along the curved ray)
+    // Inside a gradient-index medium: the curved ray's points, from the origin to the hit
+    // (the start, each step's end, the exit); `ray.dir` is then the direction it arrives in.
+    std::vector<Vec3> path;
     Vec3 point{0, 0, 0};
     Vec3 normal{0, 0, 0};  // unit surface normal at the hit, on the incident side
     std::string object;

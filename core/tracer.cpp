@@ -10,6 +10,7 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceOptions& options)
       options_(options),
       search_(std::make_unique<HitSearch>(scene, rules_, options)),
       lighting_(std::make_unique<Lighting>(scene, rules_, *search_)),
+      media_(grin::media(scene)),
       camera_basis_(scene.camera.basis()) {
     exact_ = polarisation_model(scene) == PolarisationModel::Exact;
     packets_ = options.packets && !exact_;
@@ -20,6 +21,33 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceOptions& options)
 }
 
 SceneTracer::~SceneTracer() = default;
+
+std::optional<SurfaceHit> SceneTracer::through(const grin::Medium& m, Ray& ray, double nm, RenderStats& stats,
+                                               Vec3* frame) const {
+    grin::Settings settings = m.settings;
+    if (frame) settings.frame = *frame;
+    const grin::Result r = grin::advance(m.profile, m.region, ray.origin, ray.dir,
+                                         (nm > 0 ? nm : spectrum::fraunhofer::D) * 1e-3, settings);
+    if (frame) *frame = r.exit_frame;
+    ++stats.grin_segments;
+    stats.grin_evaluations += static_cast<std::uint64_t>(r.evaluations);
+    if (r.status == grin::Status::budget_exhausted) {
+        ++stats.grin_exhausted;
+        return std::nullopt;
+    }
+    const Object& o = scene_.objects[static_cast<size_t>(m.object)];
+    SurfaceHit h;
+    h.hit.t = r.length;
+    h.hit.point = r.exit_point;
+    h.hit.normal = grin::outward_normal(m.region, r.exit_point);
+    h.hit.facet = grin::nearest_face(m.region, r.exit_point);
+    h.object = &o;
+    h.material = &scene_.materials[static_cast<size_t>(o.material)];
+    h.entering = false;  // from inside: the normal on the incident side is the inward one
+    h.normal = -h.hit.normal;
+    ray.dir = r.exit_dir;
+    return h;
+}
 
 InteractionContext SceneTracer::context(double band_ior, bool split, biref::Wave wave, double wavelength_nm,
                                         bool adjoint) const {

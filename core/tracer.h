@@ -8,6 +8,7 @@
 #include <optional>
 
 #include <refract/core/compat.h>
+#include <refract/core/grin/media.h>
 #include <refract/core/hit_search.h>
 #include <refract/core/lighting.h>
 #include <refract/core/render_stats.h>
@@ -49,6 +50,20 @@ public:
     // Whether rays are walked in packets (the wavelength bands of a split, the samples of a
     // pixel): TraceOptions::packets, natural light, and every material in packets (a
     // uniaxial crystal's o and e waves ride one ray at a time).
+    // Gradient-index media (core/grin/media.h, docs/grin.md): the medium a ray leaving
+    // `from` (none: a root ray) travels in, null when none; and its curved segment there,
+    // from the ray's origin to the medium's boundary at wavelength `nm` (0: an RGB ray, the
+    // material's D line): the hit there, with the curved length as hit.t and ray.dir turned
+    // to the direction it arrives in; none when the step budget ran out (lost light). With
+    // `frame` (a Stokes frame vector ⟂ ray.dir): it is parallel-transported along the ray
+    // (Rytov's law, core/grin/rytov.h) to the arrival.
+    const grin::Medium* medium_of(const Ray& ray, RayOrigin from) const {
+        return media_.empty() ? nullptr : grin::medium_of(media_, ray.origin, ray.dir, from.object);
+    }
+    std::optional<SurfaceHit> through(const grin::Medium& m, Ray& ray, double nm, RenderStats& stats,
+                                      Vec3* frame = nullptr) const;
+    bool graded() const { return !media_.empty(); }
+
     bool packets() const { return packets_; }
     // Whether the render carries exact polarisation (polarisation_model(), core/integrators/integrator.h).
     bool exact() const { return exact_; }
@@ -92,6 +107,7 @@ private:
     TraceOptions options_;
     std::unique_ptr<HitSearch> search_;
     std::unique_ptr<Lighting> lighting_;
+    std::vector<grin::Medium> media_;
     bool absorbing_ = false;
     bool exact_ = false;
     bool packets_ = true;

@@ -98,6 +98,10 @@ void check(const material::Metal& k, const Material& m, const Refuser& refuse) {
 void check(const material::Uniaxial&, const Material& m, const Refuser& refuse) {
     refuse(material_where(m), "a uniaxial crystal (POV-Ray has no double refraction)");
 }
+void check(const material::Grin&, const Material& m, const Refuser& refuse) {
+    refuse(material_where(m), "a gradient-index medium (POV-Ray has no curved rays; a stack of constant-index layers "
+                              "stands in for one)");
+}
 void check(const material::Dielectric& k, const Material& m, const Refuser& refuse) {
     if (k.dispersion && k.dispersion->dispersive() && !k.dispersion->is_povray())
         refuse(material_where(m), "dispersion '" + comment_text(k.dispersion->label) +
@@ -309,6 +313,7 @@ std::string texture_of(const material::Emissive& m) {
     return "pigment { rgb " + vec(m.color) + " } finish { ambient 0 emission 1 diffuse 0 }";
 }
 std::string texture_of(const material::Uniaxial&) { return ""; }  // refused by check()
+std::string texture_of(const material::Grin&) { return ""; }      // refused by check()
 std::string texture_of(const material::Dielectric& m) {
     // rgbf <filter, 1>: transmitted light × filter, no surface colour of its own.
     // conserve_energy: the transmitted part is also × (1 − reflectivity).

@@ -119,6 +119,18 @@ REFRACT_GRIN_FROM_BOTH(TabulatedRadial)
 REFRACT_GRIN_FROM_BOTH(EarthAtmosphere)
 #undef REFRACT_GRIN_FROM_BOTH
 
+bool dispersive(const LinearHeight& p) { return p.n0.B != 0; }
+bool dispersive(const ExponentialHeight& p) { return p.n0.B != 0; }
+bool dispersive(const Luneburg&) { return false; }
+bool dispersive(const MaxwellFishEye& p) { return p.n0.B != 0; }
+bool dispersive(const SechRod& p) { return p.n0.B != 0; }
+bool dispersive(const ParabolicRod& p) { return p.n0.B != 0; }
+bool dispersive(const TabulatedRadial&) { return false; }
+bool dispersive(const EarthAtmosphere&) { return true; }
+bool dispersive(const Profile& p) {
+    return std::visit([](const auto& k) { return dispersive(k); }, p);
+}
+
 double index(const Profile& p, const Vec3& x, double l) {
     return std::visit([&](const auto& k) { return index(k, x, l); }, p);
 }

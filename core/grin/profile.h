@@ -100,7 +100,8 @@ struct IndexGradient {
 #define REFRACT_GRIN_PROFILE_OVERLOADS(Kind)                                 \
     double index(const Kind& p, const Vec3& x, double lambda_um);            \
     Vec3 gradient(const Kind& p, const Vec3& x, double lambda_um);           \
-    IndexGradient index_and_gradient(const Kind& p, const Vec3& x, double lambda_um);
+    IndexGradient index_and_gradient(const Kind& p, const Vec3& x, double lambda_um); \
+    bool dispersive(const Kind& p);
 REFRACT_GRIN_PROFILE_OVERLOADS(LinearHeight)
 REFRACT_GRIN_PROFILE_OVERLOADS(ExponentialHeight)
 REFRACT_GRIN_PROFILE_OVERLOADS(Luneburg)
@@ -111,6 +112,7 @@ REFRACT_GRIN_PROFILE_OVERLOADS(TabulatedRadial)
 REFRACT_GRIN_PROFILE_OVERLOADS(EarthAtmosphere)
 REFRACT_GRIN_PROFILE_OVERLOADS(Profile)
 #undef REFRACT_GRIN_PROFILE_OVERLOADS
+// dispersive(): the index depends on the wavelength (a base index with a Cauchy B ≠ 0, the air).
 
 // The profile's parameters checked for the medium filling `where` over the wavelengths
 // [lambda_min_um, lambda_max_um]: every parameter finite, lengths > 0, and the index

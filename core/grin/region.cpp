@@ -36,6 +36,11 @@ double signed_distance(const Slab& s, const Vec3& x) {
     return std::max(s.lo - h, h - s.hi);
 }
 double signed_distance(const HalfSpace& h, const Vec3& x) { return h.normal.dot(x) - h.offset; }
+double signed_distance(const Polyhedron& q, const Vec3& x) {
+    double d = -inf;
+    for (const HalfSpace& f : q.faces) d = std::max(d, signed_distance(f, x));
+    return d;
+}
 double signed_distance(const Region& r, const Vec3& x) {
     return std::visit([&](const auto& k) { return signed_distance(k, x); }, r);
 }
@@ -63,6 +68,23 @@ Vec3 outward_normal(const Slab& s, const Vec3& x) {
     return s.lo - h > h - s.hi ? Vec3(-s.normal) : s.normal;
 }
 Vec3 outward_normal(const HalfSpace& h, const Vec3&) { return h.normal; }
+namespace {
+size_t nearest(const Polyhedron& q, const Vec3& x) {
+    size_t best = 0;
+    for (size_t i = 1; i < q.faces.size(); ++i)
+        if (signed_distance(q.faces[i], x) > signed_distance(q.faces[best], x)) best = i;
+    return best;
+}
+int face_of(const Sphere&, const Vec3&) { return -1; }
+int face_of(const Box&, const Vec3&) { return -1; }
+int face_of(const Slab&, const Vec3&) { return -1; }
+int face_of(const HalfSpace&, const Vec3&) { return -1; }
+int face_of(const Polyhedron& q, const Vec3& x) { return static_cast<int>(nearest(q, x)); }
+}  // namespace
+int nearest_face(const Region& r, const Vec3& x) {
+    return std::visit([&](const auto& k) { return face_of(k, x); }, r);
+}
+Vec3 outward_normal(const Polyhedron& q, const Vec3& x) { return q.faces[nearest(q, x)].normal; }
 Vec3 outward_normal(const Region& r, const Vec3& x) {
     return std::visit([&](const auto& k) { return outward_normal(k, x); }, r);
 }
@@ -87,6 +109,14 @@ std::pair<double, double> extent(const HalfSpace& h, const Vec3& u) {
     if (p < 0) return {-h.offset, inf};
     return {-inf, inf};
 }
+std::pair<double, double> extent(const Polyhedron& q, const Vec3& u) {
+    double lo = inf, hi = -inf;
+    for (const Vec3& v : q.vertices) {
+        lo = std::min(lo, u.dot(v));
+        hi = std::max(hi, u.dot(v));
+    }
+    return {lo, hi};
+}
 std::pair<double, double> extent(const Region& r, const Vec3& u) {
     return std::visit([&](const auto& k) { return extent(k, u); }, r);
 }
@@ -110,6 +140,11 @@ double max_distance_from_line(const Box& b, const Vec3& p, const Vec3& d) {
 }
 double max_distance_from_line(const Slab&, const Vec3&, const Vec3&) { return inf; }
 double max_distance_from_line(const HalfSpace&, const Vec3&, const Vec3&) { return inf; }
+double max_distance_from_line(const Polyhedron& q, const Vec3& p, const Vec3& d) {
+    double m = 0;  // convex: the largest distance is at a vertex
+    for (const Vec3& v : q.vertices) m = std::max(m, line_distance(v, p, d));
+    return m;
+}
 double max_distance_from_line(const Region& r, const Vec3& p, const Vec3& d) {
     return std::visit([&](const auto& k) { return max_distance_from_line(k, p, d); }, r);
 }
@@ -119,6 +154,12 @@ double scale_of(const Sphere& s) { return s.radius; }
 double scale_of(const Box& b) { return 0.5 * (b.hi - b.lo).norm(); }
 double scale_of(const Slab& s) { return s.hi - s.lo; }
 double scale_of(const HalfSpace&) { return 1.0; }
+double scale_of(const Polyhedron& q) {  // half the diameter
+    double s = 0;
+    for (const Vec3& a : q.vertices)
+        for (const Vec3& b : q.vertices) s = std::max(s, (a - b).squaredNorm());
+    return 0.5 * std::sqrt(s);
+}
 }  // namespace
 double length_scale(const Region& r) {
     return std::visit([](const auto& k) { return scale_of(k); }, r);
@@ -147,6 +188,12 @@ void check(Slab& s, const std::string& path) {
 void check(HalfSpace& h, const std::string& path) {
     unit_in_place(h.normal, path + "/normal");
     finite(h.offset, path + "/offset");
+}
+void check(Polyhedron& q, const std::string& path) {
+    if (q.faces.size() < 4 || q.vertices.size() < 4)
+        throw InputError(path + ": a polyhedron needs at least 4 faces and 4 vertices (a bounded solid)");
+    for (size_t i = 0; i < q.faces.size(); ++i) check(q.faces[i], path + "/faces/" + std::to_string(i));
+    for (size_t i = 0; i < q.vertices.size(); ++i) finite_vec(q.vertices[i], path + "/vertices/" + std::to_string(i));
 }
 }  // namespace
 

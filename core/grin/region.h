@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -32,13 +33,22 @@ struct HalfSpace {
     Vec3 normal = Vec3::UnitZ();
     double offset = 0.0;
 };
+// A bounded convex polyhedron: the points inside every face's half-space, with its
+// vertices (for its extent). Its signed distance is max over the faces of normal·x − offset:
+// exact inside and on the boundary, a lower bound of the distance outside (zero exactly on
+// the boundary, which is what the crossing's root finding needs).
+struct Polyhedron {
+    std::vector<HalfSpace> faces;
+    std::vector<Vec3> vertices;
+};
 
-using Region = std::variant<Sphere, Box, Slab, HalfSpace>;
+using Region = std::variant<Sphere, Box, Slab, HalfSpace, Polyhedron>;
 
 double signed_distance(const Sphere& s, const Vec3& x);
 double signed_distance(const Box& b, const Vec3& x);
 double signed_distance(const Slab& s, const Vec3& x);
 double signed_distance(const HalfSpace& h, const Vec3& x);
+double signed_distance(const Polyhedron& q, const Vec3& x);
 double signed_distance(const Region& r, const Vec3& x);
 
 // The gradient of the signed distance (unit where it exists; at a sphere's centre, any
@@ -47,6 +57,7 @@ Vec3 outward_normal(const Sphere& s, const Vec3& x);
 Vec3 outward_normal(const Box& b, const Vec3& x);
 Vec3 outward_normal(const Slab& s, const Vec3& x);
 Vec3 outward_normal(const HalfSpace& h, const Vec3& x);
+Vec3 outward_normal(const Polyhedron& q, const Vec3& x);
 Vec3 outward_normal(const Region& r, const Vec3& x);
 
 // The range of u·x over the region (u unit); ±infinity where it is unbounded.
@@ -54,6 +65,7 @@ std::pair<double, double> extent(const Sphere& s, const Vec3& u);
 std::pair<double, double> extent(const Box& b, const Vec3& u);
 std::pair<double, double> extent(const Slab& s, const Vec3& u);
 std::pair<double, double> extent(const HalfSpace& h, const Vec3& u);
+std::pair<double, double> extent(const Polyhedron& q, const Vec3& u);
 std::pair<double, double> extent(const Region& r, const Vec3& u);
 
 // The largest distance from the line through p along unit d over the region (infinity
@@ -62,7 +74,12 @@ double max_distance_from_line(const Sphere& s, const Vec3& p, const Vec3& d);
 double max_distance_from_line(const Box& b, const Vec3& p, const Vec3& d);
 double max_distance_from_line(const Slab& s, const Vec3& p, const Vec3& d);
 double max_distance_from_line(const HalfSpace& h, const Vec3& p, const Vec3& d);
+double max_distance_from_line(const Polyhedron& q, const Vec3& p, const Vec3& d);
 double max_distance_from_line(const Region& r, const Vec3& p, const Vec3& d);
+
+// The face of a polyhedron nearest to x from inside (its index in `faces`); −1 for the
+// kinds without a face list.
+int nearest_face(const Region& r, const Vec3& x);
 
 // A length that sets the scale of the region (a sphere's radius, a box's half diagonal,
 // a slab's thickness, 1 for a half-space): the unit of the boundary tolerance.
