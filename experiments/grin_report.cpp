@@ -27,28 +27,44 @@ std::string rays_plot(const std::string& file, int last, const std::string& styl
            style + " notitle";
 }
 
+// Per ray: with the layer and without, and the run of consecutive rays reaching the object
+// it belongs to (a ray meeting the ground ends a run; the figure draws each run as one line).
 Csv mirage_csv(const MirageStudy& m) {
     Csv t{{"elevation_deg", "hits_ground", "ground_distance_m", "height_at_object_m", "standard_hits_ground",
-           "standard_height_at_object_m"},
+           "standard_height_at_object_m", "run", "standard_run"},
           {}};
+    int run = 0, standard_run = 0;
     for (size_t i = 0; i < m.rays.size(); ++i) {
         const MirageRay &a = m.rays[i], &b = m.standard_rays[i];
+        if (i > 0 && a.hits_ground && !m.rays[i - 1].hits_ground) ++run;
+        if (i > 0 && b.hits_ground && !m.standard_rays[i - 1].hits_ground) ++standard_run;
         t.add({cell(a.elevation_deg), a.hits_ground ? "1" : "0", a.hits_ground ? cell(a.ground_distance) : "",
-               cell(a.height_at_object), b.hits_ground ? "1" : "0", cell(b.height_at_object)});
+               cell(a.height_at_object), b.hits_ground ? "1" : "0", cell(b.height_at_object), std::to_string(run),
+               std::to_string(standard_run)});
     }
     return t;
 }
+int last_run(const MirageStudy& m, bool standard) {
+    int run = 0;
+    const auto& rays = standard ? m.standard_rays : m.rays;
+    for (size_t i = 1; i < rays.size(); ++i)
+        if (rays[i].hits_ground && !rays[i - 1].hits_ground) ++run;
+    return run;
+}
 
-void mirage_figure(const std::string& dir, const MirageStudy& m, const std::string& file, const std::string& title) {
+void mirage_figure(const std::string& dir, const MirageStudy& m, const std::string& file, const std::string& title,
+                   const std::string& layer) {
     std::ostringstream b;
     b << "set datafile separator ','\nset multiplot layout 2,1 title '" << title << "'\n"
       << "set xlabel 'distance along the ground (m)'\nset ylabel 'height (m)'\nset yrange [0:*]\n"
       << "set arrow from " << m.distance << ", graph 0 to " << m.distance << ", graph 1 nohead dt 2\n"
       << "plot " << rays_plot(file + "_paths.csv", last_ray(m.paths), "lc rgb '#1f77b4'") << "\n"
       << "unset arrow\nset yrange [*:*]\nset xlabel 'elevation at the eye (degrees)'\n"
-      << "set ylabel 'height reached at " << g(m.distance, 4) << " m (m)'\nset key top left\n"
-      << "plot '" << file << ".csv' using 1:4 skip 1 with linespoints pt 7 ps 0.4 title 'with the surface layer', "
-      << "'" << file << ".csv' using 1:6 skip 1 with lines dt 2 title 'standard atmosphere'\n"
+      << "set ylabel 'height reached at " << fmt(m.distance, 6) << " m (m)'\nset key top left\n"
+      << "plot for [i=0:" << last_run(m, false) << "] '" << file << ".csv' using 1:($7 == i ? $4 : NaN) skip 1 "
+      << "with linespoints pt 7 ps 0.4 lc 1 title (i == 0 ? 'with " << layer << "' : ''), "
+      << "for [i=0:" << last_run(m, true) << "] '" << file << ".csv' using 1:($8 == i ? $6 : NaN) skip 1 "
+      << "with lines dt 2 lc 2 title (i == 0 ? 'without it' : '')\n"
       << "unset multiplot\n";
     gnuplot_figure(dir, file, b.str(), {800, 900, 6.0, 6.8});
 }
@@ -89,9 +105,9 @@ void figures(const Result& r, const std::string& dir) {
                        "\nunset multiplot\n",
                    {1100, 560, 8.0, 4.2});
     mirage_figure(dir, r.road, "mirage_road", "Inferior mirage over a hot road: rays from an eye at " +
-                                                  g(r.road.eye_height) + " m");
+                                                  g(r.road.eye_height) + " m", "the surface layer");
     mirage_figure(dir, r.sea, "mirage_sea", "Superior mirage over a cold sea: rays from an eye at " +
-                                                g(r.sea.eye_height) + " m");
+                                                g(r.sea.eye_height) + " m", "the inversion");
     gnuplot_figure(dir, "sun",
                    "set datafile separator ','\nset multiplot layout 2,1 title 'The setting sun (standard atmosphere)'\n"
                    "set xlabel 'apparent altitude of the lower limb (degrees)'\nset ylabel 'vertical / horizontal diameter'\n"
@@ -231,7 +247,7 @@ void write(const Result& r, const std::string& dir) {
         const ConvergenceCurve& c = r.convergence.curves[k];
         for (int fixed = 0; fixed < 2; ++fixed)
             for (const grin::StepPoint& p : fixed ? c.fixed : c.adaptive)
-                conv.add({std::to_string(k), std::to_string(fixed), cell(p.setting), cell(p.error),
+                conv.add({std::to_string(k), std::to_string(fixed), cell(p.setting), p.left ? cell(p.error) : "",
                           std::to_string(p.evaluations), std::to_string(p.steps)});
         fits.add({csv_quote(c.ray), cell(c.tol_slope, 4), cell(c.step_order, 4), cell(c.matched_ratio, 4)});
     }

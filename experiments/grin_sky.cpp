@@ -230,7 +230,7 @@ MirageStudy mirage_study(bool inferior, bool quick) {
     const int n = quick ? 24 : 160, every = quick ? 3 : 8;
     for (int i = 0; i <= n; ++i) {
         const double e = m.e_lo + (m.e_hi - m.e_lo) * i / n;
-        st.rays.push_back(mirage_ray(air, m, e, lambda, i % every == 0 ? &st.paths : nullptr, i));
+        st.rays.push_back(mirage_ray(air, m, e, lambda, i % every == 0 ? &st.paths : nullptr, i / every));
         st.standard_rays.push_back(mirage_ray(standard, m, e, lambda, nullptr, i));
     }
     find_branches(st);
@@ -325,14 +325,18 @@ ConvergenceStudy convergence_study(bool quick) {
         const double per_decade = quick ? 1 : 2;
         for (double e = 4; e <= 13.01; e += 1 / per_decade) c.adaptive.push_back(g::adaptive_point(ray, std::pow(10.0, -e)));
         for (int k = 0; k <= (quick ? 5 : 8); ++k)  // a budget for the coarse steps that do not reach the exit
-            c.fixed.push_back(g::fixed_point(ray, 0.4 / std::pow(2.0, k), quick ? 100000 : 400000));
+            c.fixed.push_back(g::fixed_point(ray, 0.4 / std::pow(2.0, k), quick ? 50000 : 250000));
         std::vector<double> x, y;
         for (const g::StepPoint& p : c.adaptive)
             if (p.setting >= 1e-12 && p.error > 0) x.push_back(p.setting), y.push_back(p.error);
         c.tol_slope = loglog_fit(x, y).slope;
         x.clear(), y.clear();
+        // The fit over the steps whose error is between 1e-3 and 100× the sweep's smallest
+        // (the rounding floor, reached as the steps grow many).
+        double floor = 1.0;
+        for (const g::StepPoint& p : c.fixed) floor = std::fmin(floor, p.error);
         for (const g::StepPoint& p : c.fixed)
-            if (p.error > 1e-12 && p.error < 1e-3) x.push_back(p.setting), y.push_back(p.error);
+            if (p.error > 100 * floor && p.error < 1e-3) x.push_back(p.setting), y.push_back(p.error);
         c.step_order = x.size() >= 2 ? loglog_fit(x, y).slope : NAN;
         const g::StepPoint a = g::adaptive_point(ray, 1e-11);
         c.matched_ratio = static_cast<double>(g::fixed_steps_to_match(ray, a.error).evaluations) /

@@ -8,7 +8,8 @@ StepPoint measure(const KnownRay& ray, const Settings& s, double setting) {
     const Result r = advance(ray.profile, ray.region, ray.x0, ray.dir, ray.lambda_um, s);
     StepPoint p;
     p.setting = setting;
-    p.error = r.status == Status::left_region ? (r.exit_point - ray.exit).norm() : 1.0;
+    p.left = r.status == Status::left_region;
+    p.error = p.left ? (r.exit_point - ray.exit).norm() : 1.0;
     p.evaluations = r.evaluations;
     p.steps = r.steps;
     return p;

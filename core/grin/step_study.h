@@ -19,6 +19,7 @@ struct KnownRay {
 
 struct StepPoint {
     double setting = 0;     // the tolerance (adaptive) or the step in t (fixed)
+    bool left = true;       // the ray left the region (else it ran out of its step budget)
     double error = 0;       // |exit point − the exact one|; 1 when the ray did not leave
     long evaluations = 0;   // index-and-gradient evaluations
     int steps = 0;          // accepted
