@@ -50,7 +50,7 @@ LuneburgStudy luneburg_study(bool quick) {
         st.spot_radius = std::fmax(st.spot_radius, (r.exit_point - focus).norm());
         st.direction_error = std::fmax(st.direction_error, (r.exit_dir + x0).norm());
         evaluations += static_cast<double>(r.evaluations);
-        add_point(st.paths, i, x0 - 0.8 * z, z, y);
+        add_point(st.paths, i, Vec3(0, rho, -1.5), z, y);
         add_path(st.paths, i, r, z, y);
         add_point(st.paths, i, r.exit_point + 0.8 * r.exit_dir, z, y);
     }

@@ -121,7 +121,7 @@ void figures(const Result& r, const std::string& dir) {
     gnuplot_figure(dir, "refraction",
                    "set datafile separator ','\nset multiplot layout 2,1 title 'Astronomical refraction at 10 °C, "
                    "101.0 kPa, 550 nm'\nset xlabel 'apparent altitude (degrees)'\nset ylabel 'refraction (arcmin)'\n"
-                   "set logscale y\nset xrange [0:90]\n"
+                   "set logscale y\nset xrange [0:90]\nset yrange [0.1:100]\n"
                    "plot 'refraction.csv' using 1:3 skip 1 with points pt 7 title 'traced', "
                    "'refraction.csv' using 1:4 skip 1 with lines title 'refraction integral', "
                    "'refraction.csv' using 1:5 skip 1 with lines dt 2 title 'Bennett', "
