@@ -12,6 +12,7 @@
 #include "cli/bench_timing.h"
 #include <refract/core/grin/profile.h>
 #include <refract/core/grin/ray_equation.h>
+#include <refract/core/grin/step_study.h>
 
 namespace refract::cli::bench {
 
@@ -101,41 +102,31 @@ void grin(int rounds) {
     std::printf("Adaptive Dormand-Prince 5(4) against fixed steps of the same method, same error at the exit\n");
     struct Ray {
         std::string name;
-        Profile profile;
-        Region region;
-        Vec3 x0, dir, exit;
+        KnownRay ray;
         double tol;
     };
     const double rho = 0.7;
     const Vec3 r0(0, 0, 0.5), image = -r0 / r0.squaredNorm();
     const std::vector<Ray> rays = {
-        {"Luneburg, impact 0.7", Luneburg{}, grin::Sphere{}, Vec3(rho, 0, -std::sqrt(1 - rho * rho)), Vec3::UnitZ(),
-         Vec3::UnitZ(), 1e-11},
-        {"sech rod, one pitch, 0.3 rad", SechRod{Vec3::Zero(), Vec3::UnitZ(), {1.5, 0.0}, 0.8},
-         grin::Slab{Vec3::UnitZ(), 0.0, 2 * kPi / 0.8}, Vec3(0.3, 0, 0), Vec3(std::sin(0.3), 0, std::cos(0.3)),
-         Vec3(0.3, 0, 2 * kPi / 0.8), 1e-11},
-        {"fish-eye, 20 deg off the axis", MaxwellFishEye{Vec3::Zero(), {2.0, 0.0}, 1.0}, grin::HalfSpace{-Vec3::UnitX(), 0.0},
-         r0, Vec3(std::sin(20 * kPi / 180), 0, std::cos(20 * kPi / 180)), image, 1e-11},
+        {"Luneburg, impact 0.7",
+         {Luneburg{}, grin::Sphere{}, Vec3(rho, 0, -std::sqrt(1 - rho * rho)), Vec3::UnitZ(), Vec3::UnitZ(), kLambda},
+         1e-11},
+        {"sech rod, one pitch, 0.3 rad",
+         {SechRod{Vec3::Zero(), Vec3::UnitZ(), {1.5, 0.0}, 0.8}, grin::Slab{Vec3::UnitZ(), 0.0, 2 * kPi / 0.8},
+          Vec3(0.3, 0, 0), Vec3(std::sin(0.3), 0, std::cos(0.3)), Vec3(0.3, 0, 2 * kPi / 0.8), kLambda},
+         1e-11},
+        {"fish-eye, 20 deg off the axis",
+         {MaxwellFishEye{Vec3::Zero(), {2.0, 0.0}, 1.0}, grin::HalfSpace{-Vec3::UnitX(), 0.0}, r0,
+          Vec3(std::sin(20 * kPi / 180), 0, std::cos(20 * kPi / 180)), image, kLambda},
+         1e-11},
     };
     for (const Ray& ray : rays) {
-        Settings s;
-        s.abs_tol = s.rel_tol = ray.tol;
-        const Result a = advance(ray.profile, ray.region, ray.x0, ray.dir, kLambda, s);
-        const double target = (a.exit_point - ray.exit).norm();
-        long fixed = 0;
-        double err = 1, step = 0.4;
-        for (; err > target && step > 1e-5; step /= 2) {
-            Settings f;
-            f.fixed_step = step;
-            f.max_steps = 4000000;
-            const Result r = advance(ray.profile, ray.region, ray.x0, ray.dir, kLambda, f);
-            err = r.status == Status::left_region ? (r.exit_point - ray.exit).norm() : 1.0;
-            fixed = r.evaluations;
-        }
+        const StepPoint a = adaptive_point(ray.ray, ray.tol);
+        const StepPoint f = fixed_steps_to_match(ray.ray, a.error);  // core/grin/step_study.h
         std::printf("  %-30s tol %.0e: adaptive %6ld evaluations (error %.2e), fixed step %.3g: %8ld (error %.2e), "
                     "ratio %.1f\n",
-                    ray.name.c_str(), ray.tol, a.evaluations, target, 2 * step, fixed, err,
-                    static_cast<double>(fixed) / static_cast<double>(a.evaluations));
+                    ray.name.c_str(), ray.tol, a.evaluations, a.error, f.setting, f.evaluations, f.error,
+                    static_cast<double>(f.evaluations) / static_cast<double>(a.evaluations));
     }
 }
 

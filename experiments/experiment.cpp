@@ -39,6 +39,11 @@ const std::vector<Experiment>& all() {
          "Double refraction in uniaxial crystals: a calcite plate's double image against walk-off x thickness and through "
          "an analyser; diamond, cubic zirconia and moissanite brilliants through the table (facet doubling, walk-off)",
          birefringence::run},
+        {"grin",
+         "Gradient-index media by the ray equation: Luneburg and fish-eye lenses, sech and parabolic rods, a rod imaging a "
+         "grid, mirages over a hot road and a cold sea, the setting sun's flattening and green limb, astronomical "
+         "refraction against Bennett and Saemundsson, the integrator's convergence",
+         grin_media::run},
     };
     return list;
 }

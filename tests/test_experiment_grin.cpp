@@ -1,0 +1,71 @@
+// The grin experiment's studies (experiments/grin.h) in their quick configuration: real
+// numbers from core/grin's advance(), against the closed forms and the published ranges the
+// summary states.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <refract/experiments/grin.h>
+
+using namespace refract::experiments::grin_media;
+
+TEST_CASE("grin experiment: the lenses focus as their closed forms say and the parabolic rod does not",
+          "[experiments][grin]") {
+    const LuneburgStudy L = luneburg_study(true);
+    INFO("Luneburg spot " << L.spot_radius << " R");
+    CHECK(L.rays == 11);
+    CHECK(L.spot_radius < 1e-9);
+    CHECK(L.direction_error < 1e-9);
+    const FishEyeStudy F = fisheye_study(true);
+    INFO("fish-eye image " << F.image_error << ", circle " << F.circle_error);
+    CHECK(F.image == -2.0);
+    CHECK(F.image_error < 1e-8);
+    CHECK(F.circle_error < 1e-8);
+    const RodStudy R = rod_study(true);
+    INFO("sech " << R.sech_spot << ", parabolic " << R.parabolic_spot);
+    CHECK(R.sech_spot < 1e-9);
+    CHECK(R.parabolic_spot > 1e-3);  // the parabolic rod's period depends on the angle
+    const GridStudy G = grid_study(true);
+    INFO("paraxial " << G.paraxial_magnification << ", axis " << G.axis_magnification << ", corner "
+                     << G.corner_magnification);
+    CHECK(G.points.size() == 9);
+    CHECK(G.paraxial_magnification < 0);  // an inverted image
+    CHECK(std::abs(G.axis_magnification / G.paraxial_magnification - 1) < 0.01);
+}
+
+TEST_CASE("grin experiment: the setting sun is flattened to about 0.8 and its green limb stands 10-20 arcsec above "
+          "the red",
+          "[experiments][grin]") {
+    const SunStudy S = sun_study(true);
+    REQUIRE(S.rows.size() == 3);
+    INFO("ratio at the horizon " << S.rows[0].ratio << " (Bennett " << S.rows[0].ratio_bennett << ")");
+    CHECK(S.rows[0].ratio > 0.75);
+    CHECK(S.rows[0].ratio < 0.9);
+    CHECK(std::abs(S.rows[0].ratio - S.rows[0].ratio_bennett) < 0.02);
+    CHECK(S.rows[2].ratio > S.rows[0].ratio);
+    CHECK(S.rows[0].horizontal_arcmin == Approx(2 * S.semidiameter_arcmin).epsilon(1e-3));
+    REQUIRE(!S.limbs.empty());
+    INFO("green - red at the horizon " << S.limbs[0].traced_arcsec << "\" against " << S.limbs[0].integral_arcsec << "\"");
+    CHECK(S.limbs[0].traced_arcsec > 10);
+    CHECK(S.limbs[0].traced_arcsec < 20);
+    CHECK(std::abs(S.limbs[0].traced_arcsec - S.limbs[0].integral_arcsec) < 0.01);
+}
+
+TEST_CASE("grin experiment: a hot road shows an inverted image under an erect one, a cold sea's inversion lifts the "
+          "hidden part of a ship into view",
+          "[experiments][grin]") {
+    const MirageStudy road = mirage_study(true, true);
+    REQUIRE(road.branches.size() == 2);
+    CHECK(road.branches[0].inverted());
+    CHECK_FALSE(road.branches[1].inverted());
+    INFO("vanishing line " << road.lowest_seen << " m, without the layer " << road.lowest_seen_standard << " m");
+    CHECK(road.lowest_seen > 0.2);   // the fold: nothing lower is seen at 600 m
+    CHECK(road.lowest_seen < 0.5);
+    CHECK(road.ground_onset_deg < -0.3);  // only rays steeper than ~0.3 degrees meet the road
+    const MirageStudy sea = mirage_study(false, true);
+    bool inverted = false;
+    for (const MirageBranch& b : sea.branches) inverted = inverted || b.inverted();
+    CHECK(inverted);
+    INFO("lowest seen " << sea.lowest_seen << " m, without the inversion " << sea.lowest_seen_standard << " m");
+    CHECK(sea.lowest_seen < sea.lowest_seen_standard - 10);
+}
