@@ -25,7 +25,10 @@ SceneTracer::~SceneTracer() = default;
 std::optional<SurfaceHit> SceneTracer::through(const grin::Medium& m, Ray& ray, double nm, RenderStats& stats,
                                                Vec3* frame) const {
     grin::Settings settings = m.settings;
-    if (frame) settings.frame = *frame;
+    if (frame) {  // the payload's frame is across the ray; one along it (none in practice) takes any across
+        const Vec3 across = *frame - frame->dot(ray.dir) * ray.dir;
+        settings.frame = across.norm() > 1e-9 ? across : ray.dir.unitOrthogonal();
+    }
     const grin::Result r = grin::advance(m.profile, m.region, ray.origin, ray.dir,
                                          (nm > 0 ? nm : spectrum::fraunhofer::D) * 1e-3, settings);
     if (frame) *frame = r.exit_frame;

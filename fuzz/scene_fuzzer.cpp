@@ -86,6 +86,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     s.samples = std::min(s.samples, 2);
     s.light_pass.photons = std::min<std::uint64_t>(s.light_pass.photons, 200);
     s.light_pass.element_size = std::max(s.light_pass.element_size, 0.05);
+    for (Material& m : scene.materials)  // a curved ray's work: a few thousand steps
+        if (auto* g = m.as<material::Grin>()) {
+            g->settings.max_steps = std::min(g->settings.max_steps, 2000);
+            g->settings.abs_tol = std::max(g->settings.abs_tol, 1e-10);
+            g->settings.rel_tol = std::max(g->settings.rel_tol, 1e-10);
+        }
     RenderOptions o;
     o.threads = 1;
     o.lost_energy = true;

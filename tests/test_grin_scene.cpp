@@ -10,6 +10,7 @@
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/core/trace_record.h>
+#include <refract/core/tracer.h>
 
 #include "input_error.h"
 
@@ -166,4 +167,26 @@ TEST_CASE("A ray that exhausts a gradient-index medium's step budget is lost lig
     const RenderResult r = render(scene);
     CHECK(r.stats.grin_exhausted > 0);
     CHECK(r.stats.lost_limits > 0);
+}
+
+TEST_CASE("A gradient-index medium with \"shadows\": false lets shadow rays through; by default it blocks them",
+          "[grin]") {
+    auto lit = [](bool shadows) {
+        json j = luneburg_scene(1e-9);
+        j["materials"]["lens"]["shadows"] = shadows;
+        j["materials"]["lens"]["profile"]["centre"] = {0, 2, 0};
+        j["objects"] = json::array({json{{"type", "sphere"}, {"center", {0, 2, 0}}, {"radius", 1}, {"material", "lens"}},
+                                    json{{"type", "plane"}, {"normal", {0, 1, 0}}, {"offset", 0},
+                                         {"material", {{"type", "diffuse"}, {"color", {1, 1, 1}}}}}});
+        j["lights"] = json::array({json{{"position", {0, 10, 0}}}});
+        const Scene scene = parse_scene(j, "shadow.json");
+        const SceneTracer tracer(scene);
+        RenderStats st;
+        const auto h = tracer.intersect(Ray{Vec3(3, 1, 0), Vec3(-3, -1, 0).normalized()}, st);
+        REQUIRE(h);
+        CHECK(h->hit.point.norm() < 1e-9);  // the floor under the sphere, seen beside it
+        return tracer.local_light(*h, st).sum();
+    };
+    CHECK(lit(false) > 1.0);
+    CHECK(lit(true) < 1e-12);
 }

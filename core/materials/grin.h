@@ -20,6 +20,10 @@ struct Grin {
     grin::Profile profile;
     grin::Settings settings;  // the integrator's tolerance and step budget
     Vec3 filter{1, 1, 1};     // a crossing transmits all colours (the shadow rays' filter)
+    // Whether it blocks shadow rays as a dielectric does in the physical mode (its light
+    // arrives through the light pass); false for air, whose index differs from the
+    // surroundings' by 1e-4 and whose shadow rays pass as if straight.
+    bool shadows = true;
 
     // The profile's index at x for a ray of wavelength `nm` (0: an RGB ray, at the D line).
     double index_at(const Vec3& x, double nm) const {
@@ -51,7 +55,7 @@ inline std::optional<Scatter> sample(const Grin& m, const SurfaceHit& h, const R
     return Scatter{in.branch[0].ray.dir, in.branch[0].factor};
 }
 inline const Vec3* shadow_filter(const Grin& m) { return &m.filter; }
-inline bool casts_shadow(const Grin&) { return true; }
+inline bool casts_shadow(const Grin& m) { return m.shadows; }
 inline bool dispersive(const Grin& m) { return grin::dispersive(m.profile); }
 // The index varies from point to point: the interaction takes the wavelength instead.
 inline double band_index(const Grin&, double, const CompatRules&) { return 0.0; }
@@ -69,11 +73,12 @@ inline void validate(const Grin&, const MaterialCheck& c) {
                          "spectral eye pass): its rays are bent by the ray tree's walker");
 }
 
-// {"type": "grin", "profile": {"kind": …}, "tolerance": 1e-9, "max_steps": 100000}
+// {"type": "grin", "profile": {"kind": …}, "tolerance": 1e-9, "max_steps": 100000,
+//  "shadows": true}
 // (docs/grin.md).
 inline Grin Grin::read(const JsonReader& r, const std::string&) {
-    r.only({"type", "profile", "tolerance", "max_steps"});
-    Grin m{grin::read_profile(r.child("profile")), grin::Settings{}, Vec3(1, 1, 1)};
+    r.only({"type", "profile", "tolerance", "max_steps", "shadows"});
+    Grin m{grin::read_profile(r.child("profile")), grin::Settings{}, Vec3(1, 1, 1), r.boolean("shadows", true)};
     const double tol = r.number("tolerance", 1e-9);
     if (!(tol >= 1e-14 && tol <= 1e-2)) r.fail_at("tolerance", format_value(tol) + " must be in [1e-14, 1e-2]");
     m.settings.abs_tol = m.settings.rel_tol = tol;
