@@ -230,6 +230,8 @@ Findings judge(const Result& r) {
         f.tolerance_proportional = f.tolerance_proportional && c.tol_slope >= 0.8 && c.tol_slope <= 1.2;
         f.fifth_order = f.fifth_order && c.step_order >= 4.5 && c.step_order <= 5.5;
     }
+    f.views_complete = !r.views.empty();
+    for (const ViewStudy& v : r.views) f.views_complete = f.views_complete && v.finite && v.grin_exhausted == 0;
     return f;
 }
 
@@ -252,6 +254,7 @@ Result compute(const ExperimentOptions& opt) {
     timed("setting sun", [&] { r.sun = sun_study(opt.quick); });
     timed("refraction", [&] { r.refraction = refraction_study(opt.quick); });
     timed("convergence", [&] { r.convergence = convergence_study(opt.quick); });
+    timed("rendered views", [&] { r.views = view_study(opt.quick, opt.threads); });
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.findings = judge(r);
     return r;

@@ -18,7 +18,10 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include <refract/core/grin/step_study.h>
+#include <refract/core/image.h>
 #include <refract/experiments/experiment.h>
 
 namespace refract::experiments::grin_media {
@@ -153,6 +156,17 @@ struct ConvergenceStudy {
     std::vector<ConvergenceCurve> curves;
 };
 
+// 6. Rendered views through GRIN objects (experiments/grin_views.cpp): each scene, its
+// image and the render's counters.
+struct ViewStudy {
+    std::string name, title;
+    nlohmann::json scene;
+    Image image;
+    double seconds = 0;
+    std::uint64_t grin_segments = 0, grin_evaluations = 0, grin_exhausted = 0;
+    bool finite = false;
+};
+
 // What the summary states, each from the numbers (`judge`).
 struct Findings {
     bool luneburg_focus = false;      // spot ≤ 1e-9 R
@@ -168,6 +182,7 @@ struct Findings {
     bool bennett_within = false;      // corrected Bennett within 0.07′ of the integral from 5° to 90°
     bool tolerance_proportional = false;  // every tol slope in [0.8, 1.2]
     bool fifth_order = false;             // every fixed-step order in [4.5, 5.5]
+    bool views_complete = false;          // every view finite, no ray out of steps
 };
 
 struct Result {
@@ -181,6 +196,7 @@ struct Result {
     SunStudy sun;
     RefractionStudy refraction;
     ConvergenceStudy convergence;
+    std::vector<ViewStudy> views;
     double seconds = 0;
     std::vector<std::pair<std::string, double>> study_seconds;  // each study's time
     Findings findings;  // judge(*this), set by compute
@@ -197,6 +213,7 @@ MirageStudy mirage_study(bool inferior, bool quick);
 SunStudy sun_study(bool quick);
 RefractionStudy refraction_study(bool quick);
 ConvergenceStudy convergence_study(bool quick);
+std::vector<ViewStudy> view_study(bool quick, int threads);
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);

@@ -342,6 +342,19 @@ void write(const Result& r, const std::string& dir) {
        << " and, at fixed steps, "
        << (f.fifth_order ? "as the fifth power of the step (the method's order)." : "not as the fifth power of the step.")
        << " Figure: convergence.png.\n\n" << fits.markdown(4) << "\n";
+    md << "## 6. Rendered views\n\nThe renderer's own walk through GRIN objects (docs/grin.md): "
+       << (f.views_complete ? "every view rendered with finite pixels and no ray out of steps."
+                            : "a view has non-finite pixels or rays that ran out of steps.")
+       << " Each scene is beside its image (`refract render NAME.json -o NAME.png` renders it again).\n\n"
+       << "| view | image | size | seconds | curved segments | index-gradient evaluations | out of steps |\n"
+       << "|---|---|---|---|---|---|---|\n";
+    for (const ViewStudy& v : r.views) {
+        write_image(path(v.name + ".png"), v.image);
+        write_text_atomic(path(v.name + ".json"), v.scene.dump(1) + "\n");
+        md << "| " << v.title << " | " << v.name << ".png | " << v.image.width << "×" << v.image.height << " | "
+           << g(v.seconds, 3) << " | " << v.grin_segments << " | " << v.grin_evaluations << " | " << v.grin_exhausted
+           << " |\n";
+    }
     write_text_atomic(path("summary.md"), md.str());
 }
 

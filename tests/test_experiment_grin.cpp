@@ -3,6 +3,7 @@
 // summary states.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include <refract/experiments/grin.h>
@@ -68,4 +69,39 @@ TEST_CASE("grin experiment: a hot road shows an inverted image under an erect on
     CHECK(inverted);
     INFO("lowest seen " << sea.lowest_seen << " m, without the inversion " << sea.lowest_seen_standard << " m");
     CHECK(sea.lowest_seen < sea.lowest_seen_standard - 10);
+}
+
+TEST_CASE("grin experiment's rendered mirage: the ball 500 m down a hot road shows an inverted image under it, "
+          "through the renderer's own walk",
+          "[experiments][grin]") {
+    const std::vector<ViewStudy> views = view_study(true, 2);
+    REQUIRE(views.size() == 2);
+    for (const ViewStudy& v : views) {
+        CHECK(v.finite);
+        CHECK(v.grin_exhausted == 0);
+        CHECK(v.grin_evaluations > 10 * v.grin_segments);
+    }
+    // The road view's middle column, top to bottom: the red rows are the ball and, joined to it
+    // at the mirage line, its inverted image: the red falls towards the ball's unlit underside
+    // and rises again below, where the mirage shows that underside upside down, shorter.
+    const refract::Image& im = views[1].image;
+    std::vector<double> red;  // the red channel over the one run of red rows
+    int runs = 0;
+    bool in_run = false;
+    for (int j = 0; j < im.height; ++j) {
+        const refract::Vec3 c = im.at(im.width / 2, j);
+        const bool is_red = c.x() > 4 * c.y() && c.x() > 0.05;
+        if (is_red && !in_run) ++runs;
+        if (is_red && runs == 1) red.push_back(c.x());
+        in_run = is_red;
+    }
+    REQUIRE(runs == 1);
+    REQUIRE(red.size() >= 6);
+    const size_t k = static_cast<size_t>(std::min_element(red.begin() + 1, red.end() - 1) - red.begin());
+    const double above = *std::max_element(red.begin(), red.begin() + static_cast<long>(k));
+    const double below = *std::max_element(red.begin() + static_cast<long>(k) + 1, red.end());
+    INFO("red rows " << red.size() << ", the minimum at row " << k << " of the run");
+    CHECK(red[k] < 0.75 * above);
+    CHECK(red[k] < 0.75 * below);
+    CHECK(red.size() - k - 1 < k);  // the inverted image is compressed
 }
