@@ -39,6 +39,10 @@ const std::vector<Experiment>& all() {
          "Double refraction in uniaxial crystals: a calcite plate's double image against walk-off x thickness and through "
          "an analyser; diamond, cubic zirconia and moissanite brilliants through the table (facet doubling, walk-off)",
          birefringence::run},
+        {"grin-layers",
+         "A Luneburg lens as N constant-index shells (compat mode, the validation case grin-stack) converging to the "
+         "continuous grin lens (physical mode): image difference against N, its order, the modes' floor",
+         grin_layers::run},
     };
     return list;
 }
