@@ -6,6 +6,7 @@
 #include <refract/experiments/gem_geometry.h>
 #include <refract/experiments/gem_metrics_experiment.h>
 #include <refract/experiments/grin.h>
+#include <refract/experiments/grin_layers.h>
 #include <refract/experiments/ohtsuka1998.h>
 #include <refract/experiments/ohtsuka1998_result.h>
 #include <refract/experiments/optics_bench.h>

@@ -44,6 +44,10 @@ const std::vector<Experiment>& all() {
          "grid, mirages over a hot road and a cold sea, the setting sun's flattening and green limb, astronomical "
          "refraction against Bennett and Saemundsson, the integrator's convergence",
          grin_media::run},
+        {"grin-layers",
+         "A Luneburg lens as N constant-index shells (compat mode, the validation case grin-stack) converging to the "
+         "continuous grin lens (physical mode): image difference against N, its order, the modes' floor",
+         grin_layers::run},
     };
     return list;
 }

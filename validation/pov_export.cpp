@@ -17,6 +17,7 @@
 #include <refract/core/image.h>
 #include <refract/geometry/error.h>
 #include <refract/validation/files.h>
+#include <refract/validation/pov_nesting.h>
 
 namespace refract::validation {
 
@@ -127,7 +128,8 @@ void check_material(const Material& m, const Refuser& refuse) {
 // is inside; refract by the side of the surface normal it hits. They agree when the
 // transparent solids are disjoint (the camera may be inside one), and the only
 // nesting is RTIOW's hollow sphere (a negative-radius sphere inside a sphere of the same
-// material), which is exported as one intersection sharing one interior.
+// material), which is exported as one intersection sharing one interior, and spheres
+// strictly nested with a constant reflectivity (validation/pov_nesting.h).
 
 struct Box {
     Vec3 lo, hi;
@@ -232,7 +234,9 @@ bool same_optics(const material::Dielectric& a, const material::Dielectric& b) {
 
 // Groups of transparent objects exported as one POV-Ray object each (one interior):
 // a solid alone, or a sphere with the negative-radius spheres hollowing it.
-std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser& refuse) {
+// A transparent sphere strictly inside another is a nest (validation/pov_nesting.h):
+// `nest` gets POV-Ray's absolute indices.
+std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser& refuse, SphereNesting& nest) {
     std::vector<size_t> solids, holes;
     for (size_t k = 0; k < s.objects.size(); ++k) {
         const Object& o = s.objects[k];
@@ -252,7 +256,12 @@ std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser
             const auto* sa = std::get_if<Sphere>(&A.shape);
             const auto* sb = std::get_if<Sphere>(&B.shape);
             bool hit;
-            if (sa && sb) {
+            if (sa && sb && (sphere_strictly_inside(*sa, *sb) || sphere_strictly_inside(*sb, *sa))) {
+                for (const Object* o : {&A, &B})
+                    if (const std::string why = nesting_refusal(s.materials[o->material]); !why.empty())
+                        refuse(object_where(A) + " and " + object_where(B), why);
+                continue;
+            } else if (sa && sb) {
                 hit = (sa->center - sb->center).norm() < sa->radius + sb->radius;
             } else {
                 const auto ba = object_box(A.shape), bb = object_box(B.shape);
@@ -262,6 +271,13 @@ std::vector<std::vector<size_t>> dielectric_groups(const Scene& s, const Refuser
                 refuse(object_where(A) + " and " + object_where(B),
                        "transparent objects that overlap (or unbounded ones together)");
         }
+    nest = sphere_nesting(s, solids);
+    if (nest.any && !holes.empty())
+        refuse(object_where(s.objects[holes[0]]), "a hollow sphere in a scene with nested transparent spheres");
+    if (nest.any)
+        for (size_t k : solids)
+            if (nest.container[k] >= 0 && camera_containment(s.objects[nest.container[k]].shape, s.camera) != Containment::Outside)
+                refuse(object_where(s.objects[nest.container[k]]), "the camera inside a sphere with transparent spheres nested in it");
     std::vector<std::vector<size_t>> groups;
     for (size_t k : solids) groups.push_back({k});
     // Each hole strictly inside one sphere of the same material, holes disjoint.
@@ -332,8 +348,9 @@ std::string texture(const Material& m) {
     return "texture { " + std::visit([](const auto& kind) { return texture_of(kind); }, m.kind) + " }";
 }
 
-std::string interior(const material::Dielectric& m) {
-    std::string s = "interior { ior " + pov_number(m.ior);
+// `ior`: the material's, or POV-Ray's absolute index of a nested sphere.
+std::string interior(const material::Dielectric& m, double ior) {
+    std::string s = "interior { ior " + pov_number(ior);
     if (m.dispersion && m.dispersion->is_povray() && m.dispersion->dispersive()) {
         const auto& p = std::get<spectrum::PovRayModel>(m.dispersion->model);
         s += " dispersion " + pov_number(p.dispersion) + " dispersion_samples " + std::to_string(p.samples);
@@ -487,7 +504,8 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
     check_settings(s, refuse, opt.photons);
     for (const Material& m : s.materials) check_material(m, refuse);
     if (has_environment_map(s)) check_environment_map(*s.background.map, refuse);
-    const auto groups = dielectric_groups(s, refuse);
+    SphereNesting nest;
+    const auto groups = dielectric_groups(s, refuse, nest);
 
     std::ostringstream o;
     o << "#version 3.7;\n"
@@ -569,7 +587,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         const Material& m = s.materials[s.objects[g[0]].material];
         o << "// " << comment_text(s.objects[g[0]].name) << " (" << comment_text(m.name) << ")";
         if (g.size() == 1) {
-            o << "\n" << object_shape(s.objects[g[0]], true) << " " << texture(m) << " " << interior(*m.dielectric()) << target << " }\n";
+            o << "\n" << object_shape(s.objects[g[0]], true) << " " << texture(m) << " " << interior(*m.dielectric(), nest.absolute_ior[g[0]]) << target << " }\n";
             continue;
         }
         o << " hollowed by";
@@ -578,7 +596,7 @@ std::string export_pov(const Scene& s, const ExportOptions& opt) {
         // POV-Ray's inside test (a camera in the shell or in a cavity) is the solid's.
         o << "\nintersection {\n";
         for (size_t i : g) o << "  " << object_shape(s.objects[i], false) << " }\n";
-        o << "  " << texture(m) << "\n  " << interior(*m.dielectric()) << target << "\n}\n";
+        o << "  " << texture(m) << "\n  " << interior(*m.dielectric(), m.dielectric()->ior) << target << "\n}\n";
     }
     if (light_group) o << "}\n";
     return o.str();

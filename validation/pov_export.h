@@ -17,7 +17,8 @@ namespace refract::validation {
 // reflectance, dispersion, an index of exactly 1, max_depth beyond POV-Ray's limit,
 // overlapping transparent objects or a camera inside one (POV-Ray decides entering /
 // leaving by the objects a ray is inside, refract by the surface normal; the two agree
-// only for disjoint solids), open meshes made of glass.
+// only for disjoint solids; transparent spheres strictly nested with a constant
+// reflectivity are exported, validation/pov_nesting.h), open meshes made of glass.
 std::string export_pov(const Scene& scene);
 
 // Opt-in statistical export (docs/validation.md, "Caustics"): with `photons`, a scene

@@ -7,7 +7,7 @@ import refract
 def test_every_driver_is_listed_in_reproduce_order():
     names = [e["name"] for e in refract.experiments()]
     assert names == ["yasuda1984", "rtiow-dielectric", "gem-geometry", "gem-metrics", "ohtsuka1998", "polarisation",
-                     "optics-bench", "gem-cuts", "birefringence", "grin"]
+                     "optics-bench", "gem-cuts", "birefringence", "grin", "grin-layers"]
     assert all(e["description"] for e in refract.experiments())
 
 
