@@ -169,7 +169,7 @@ TEST_CASE("A ray that exhausts a gradient-index medium's step budget is lost lig
     CHECK(r.stats.lost_limits > 0);
 }
 
-TEST_CASE("A gradient-index medium with \"shadows\": false lets shadow rays through; by default it blocks them",
+TEST_CASE("A gradient-index medium with \"shadows\": false lets shadow rays through, and by default it blocks them",
           "[grin]") {
     auto lit = [](bool shadows) {
         json j = luneburg_scene(1e-9);
