@@ -61,7 +61,12 @@ fuzz_run() {
     local dir=build-sanitize seconds="$1"
     shift
     mkdir -p "$dir/corpus" "$dir/findings"
-    "./$dir/fuzz/scene_fuzzer" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
+    # Leak checks off in fuzzing (the sanitizer tests keep them): LeakSanitizer's
+    # stop-the-world tracer crashes (signal 11 in the tracer, an empty "crash" unit) on some
+    # runs of the whole seed set, while checking the process's worker threads; a tool fault,
+    # reproduced and left for study. Address and undefined-behaviour errors still fail it.
+    ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+    "./$dir/fuzz/scene_fuzzer" -detect_leaks=0 -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
         -artifact_prefix="$dir/findings/" "$dir/corpus" "$@"
 }
 

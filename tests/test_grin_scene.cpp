@@ -190,3 +190,41 @@ TEST_CASE("A gradient-index medium with \"shadows\": false lets shadow rays thro
     CHECK(lit(false) > 1.0);
     CHECK(lit(true) < 1e-12);
 }
+
+TEST_CASE("A dispersive gradient-index medium: each wavelength's curved ray is the ray of the profile at that "
+          "wavelength's index, and the render splits the rays by wavelength",
+          "[grin]") {
+    auto scene = [](double A, double B) {
+        json j = luneburg_scene(1e-11);
+        j["materials"]["lens"]["profile"] = {{"kind", "linear-height"}, {"n0", A}, {"cauchy_b", B}, {"slope", 0.2},
+                                             {"h0", 0}, {"up", {0, 1, 0}}};
+        j["objects"] = json::array({json{{"type", "polyhedron"},
+                                         {"material", "lens"},
+                                         {"planes", {{1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 1, 0, 1}, {0, -1, 0, 1},
+                                                     {0, 0, 1, 1}, {0, 0, -1, 1}}}}});
+        return parse_scene(j, "prism.json");
+    };
+    const double A = 1.5, B = 0.01;  // Cauchy, B in µm²
+    const Scene dispersive = scene(A, B);
+    const Ray ray{Vec3(0.2, 0.3, -3), Vec3(0.05, 0, 1).normalized()};
+    auto inside_exit = [&](const Scene& s, double nm) {
+        const TraceRecord rec = trace_ray(s, ray, nm);
+        for (const TraceSegment& t : rec.segments)
+            if (t.parent == 0 && t.transmissions == 1) return t.point;
+        FAIL("no transmitted segment");
+        return Vec3(Vec3::Zero());
+    };
+    const Vec3 blue = inside_exit(dispersive, 450), red = inside_exit(dispersive, 650);
+    CHECK((blue - red).norm() > 1e-4);  // the gradient bends each wavelength by its own index
+    for (const double nm : {450.0, 650.0}) {
+        const double um = nm * 1e-3;
+        const Vec3 same = inside_exit(scene(A + B / (um * um), 0.0), nm);
+        CHECK((inside_exit(dispersive, nm) - same).norm() < 1e-12);
+    }
+    RenderResult r = render(dispersive);
+    CHECK(r.stats.spectral_splits > 0);
+    CHECK(r.stats.grin_segments > r.stats.spectral_splits);  // the bands' own curved segments
+    double sum = 0;
+    for (double v : r.image.rgb) sum += v;
+    CHECK(std::isfinite(sum));
+}

@@ -2,7 +2,7 @@
 #include <refract/core/grin/profile_json.h>
 
 #include <cmath>
-#include <functional>
+#include <iterator>
 #include <vector>
 
 namespace refract::grin {
@@ -13,14 +13,13 @@ CauchyIndex base(const JsonReader& r, double fallback) {
     return CauchyIndex{r.number("n0", fallback), r.number("cauchy_b", 0.0)};
 }
 
-// Each kind's name, reader and fields.
+// Each kind's name, reader and fields: a constant table (nothing allocated on first use).
 struct KindEntry {
     const char* name;
-    std::function<Profile(const JsonReader&)> read;
+    Profile (*read)(const JsonReader&);
 };
 
-const std::vector<KindEntry>& kinds() {
-    static const std::vector<KindEntry> list{
+constexpr KindEntry kKinds[] = {
         {"linear-height",
          [](const JsonReader& r) -> Profile {
              r.only({"kind", "n0", "cauchy_b", "slope", "h0", "up"});
@@ -69,9 +68,9 @@ const std::vector<KindEntry>& kinds() {
              return tabulated_radial(r.vec3("centre", Vec3::Zero()), numbers("r"), numbers("n"),
                                      r.file() + ": " + r.path());
          }},
-    };
-    return list;
-}
+};
+const KindEntry* kinds_begin() { return std::begin(kKinds); }
+const KindEntry* kinds_end() { return std::end(kKinds); }
 
 struct Namer {
     const char* operator()(const LinearHeight&) const { return "linear-height"; }
@@ -89,9 +88,9 @@ struct Namer {
 Profile read_profile(const JsonReader& r) {
     const std::string kind = r.string("kind");
     std::string known;
-    for (const KindEntry& k : kinds()) {
-        if (kind == k.name) return k.read(r);
-        known += (known.empty() ? "" : ", ") + std::string(k.name);
+    for (const KindEntry* k = kinds_begin(); k != kinds_end(); ++k) {
+        if (kind == k->name) return k->read(r);
+        known += (known.empty() ? "" : ", ") + std::string(k->name);
     }
     r.fail_at("kind", "unknown profile '" + clip_echo(kind) + "' (" + known + ")");
 }
