@@ -15,8 +15,6 @@ namespace g = refract::grin;
 using g::Vec3;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 constexpr double kLambda = 0.55;  // µm
 
 g::Settings settings(double tol, bool record) {

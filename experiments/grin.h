@@ -26,6 +26,10 @@
 
 namespace refract::experiments::grin_media {
 
+// Angles in the studies (grin.cpp, grin_sky.cpp).
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
 // A ray diagram: points of ray `ray` in the figure's plane (u across, v up), in order.
 struct PathPoint {
     int ray = 0;

@@ -18,8 +18,6 @@ namespace g = refract::grin;
 using g::Vec3;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 constexpr double kArcmin = kDeg / 60.0;
 constexpr double kArcsec = kDeg / 3600.0;
 constexpr double kR = g::kEarthRadius_m;
