@@ -20,7 +20,7 @@ cd "$(dirname "$0")"
 PACKAGES=(build-essential cmake ninja-build pkg-config libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
           libopenimageio-dev openimageio-tools libtbb-dev nlohmann-json3-dev libcli11-dev catch2
           libxsimd-dev gnuplot-nox povray libembree-dev libassimp-dev python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest
-          python3-matplotlib openmpi-bin libopenmpi-dev libyaml-cpp-dev libboost-dev)
+          python3-matplotlib openmpi-bin libopenmpi-dev libyaml-cpp-dev libboost-dev libopenvdb-dev libboost-iostreams-dev)
 
 install_missing() {
     local missing=()

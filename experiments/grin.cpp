@@ -230,6 +230,8 @@ Findings judge(const Result& r) {
     }
     f.views_complete = !r.views.empty();
     for (const ViewStudy& v : r.views) f.views_complete = f.views_complete && v.finite && v.grin_exhausted == 0;
+    f.shimmer_linear = !r.shimmer.rows.empty() && std::abs(r.shimmer.exponent - 1.0) <= 0.05;
+    f.shimmer_vdb_same = r.shimmer.vdb_dims_match && r.shimmer.vdb_max_index_difference <= 1e-9;
     return f;
 }
 
@@ -253,6 +255,7 @@ Result compute(const ExperimentOptions& opt) {
     timed("refraction", [&] { r.refraction = refraction_study(opt.quick); });
     timed("convergence", [&] { r.convergence = convergence_study(opt.quick); });
     timed("rendered views", [&] { r.views = view_study(opt.quick, opt.threads); });
+    timed("heat shimmer", [&] { r.shimmer = shimmer_study(opt.quick, opt.threads); });
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.findings = judge(r);
     return r;

@@ -14,12 +14,14 @@
 //     adaptive against fixed steps (core/grin/step_study.h).
 // `compute` measures into a Result; `write` (grin_report.cpp) turns it into CSV, figures
 // and summary.md, every finding worded by a predicate on the numbers (`judge`).
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include <refract/core/grin/grid.h>
 #include <refract/core/grin/step_study.h>
 #include <refract/core/image.h>
 #include <refract/experiments/experiment.h>
@@ -171,6 +173,28 @@ struct ViewStudy {
     bool finite = false;
 };
 
+// 7. Heat shimmer (experiments/grin_shimmer.cpp): a warm turbulent plume over a road as a
+// sampled temperature grid; the target points' apparent displacement against the plume's
+// amplitude, and a view through the field written as OpenVDB and read by the scene.
+struct ShimmerRow {
+    double amplitude_K = 0;
+    double rms_displacement = 0, max_displacement = 0;  // m on the target plane, against no plume
+    double rms_angle_urad = 0;                          // rms displacement / distance, µrad
+};
+struct ShimmerStudy {
+    double air_temperature_K = 0, plume_height = 0, length = 0, spacing = 0, eye_to_target = 0;
+    std::array<int, 3> grid_dims{0, 0, 0};
+    int target_points = 0;
+    std::vector<ShimmerRow> rows;
+    long evaluations = 0;
+    double exponent = 0;  // rms displacement ∝ amplitude^exponent, fitted over amplitudes ≤ 4 K
+    double view_amplitude_K = 0;
+    grin::GridSamples field;  // the view's temperature field (written as shimmer.vdb)
+    bool vdb_dims_match = false;
+    double vdb_max_index_difference = 0;  // the grid read back against the one sampled, at probes
+    ViewStudy view;
+};
+
 // What the summary states, each from the numbers (`judge`).
 struct Findings {
     bool luneburg_focus = false;      // spot ≤ 1e-9 R
@@ -187,6 +211,8 @@ struct Findings {
     bool tolerance_proportional = false;  // every tol slope in [0.8, 1.2]
     bool fifth_order = false;             // every fixed-step order in [4.5, 5.5]
     bool views_complete = false;          // every view finite, no ray out of steps
+    bool shimmer_linear = false;          // the displacement's exponent within 0.05 of 1
+    bool shimmer_vdb_same = false;        // the .vdb read back: same grid, index within 1e-9
 };
 
 struct Result {
@@ -201,6 +227,7 @@ struct Result {
     RefractionStudy refraction;
     ConvergenceStudy convergence;
     std::vector<ViewStudy> views;
+    ShimmerStudy shimmer;
     double seconds = 0;
     std::vector<std::pair<std::string, double>> study_seconds;  // each study's time
     Findings findings;  // judge(*this), set by compute
@@ -218,6 +245,9 @@ SunStudy sun_study(bool quick);
 RefractionStudy refraction_study(bool quick);
 ConvergenceStudy convergence_study(bool quick);
 std::vector<ViewStudy> view_study(bool quick, int threads);
+ShimmerStudy shimmer_study(bool quick, int threads);
+// The shimmer study's files (CSV, figure, shimmer.vdb, the view) and its summary section.
+std::string write_shimmer(const ShimmerStudy& s, const Findings& f, const std::string& dir);
 
 Result compute(const ExperimentOptions& opt);
 void write(const Result& r, const std::string& dir);

@@ -355,6 +355,7 @@ void write(const Result& r, const std::string& dir) {
            << g(v.seconds, 3) << " | " << v.grin_segments << " | " << v.grin_evaluations << " | " << v.grin_exhausted
            << " |\n";
     }
+    md << "\n" << write_shimmer(r.shimmer, f, dir);
     write_text_atomic(path("summary.md"), md.str());
 }
 

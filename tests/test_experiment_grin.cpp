@@ -105,3 +105,21 @@ TEST_CASE("grin experiment's rendered mirage: the ball 500 m down a hot road sho
     CHECK(red[k] < 0.75 * below);
     CHECK(red.size() - k - 1 < k);  // the inverted image is compressed
 }
+
+TEST_CASE("grin experiment's heat shimmer: the target's apparent displacement is linear in the plume's temperature "
+          "amplitude, and the field read back from OpenVDB is the one sampled",
+          "[experiments][grin][grid]") {
+    const ShimmerStudy s = shimmer_study(true, 2);
+    REQUIRE(s.rows.size() >= 3);
+    INFO("exponent " << s.exponent << ", rms at " << s.rows.front().amplitude_K << " K " << s.rows.front().rms_displacement
+                     << " m");
+    CHECK(std::abs(s.exponent - 1.0) < 0.05);
+    // 0.1–1 mm on the target 55 m away per kelvin: tens of µrad, the size of real shimmer.
+    CHECK(s.rows.front().rms_displacement > 1e-5);
+    CHECK(s.rows.back().rms_displacement < 1e-2);
+    CHECK(s.vdb_dims_match);
+    CHECK(s.vdb_max_index_difference < 1e-12);
+    CHECK(s.view.finite);
+    CHECK(s.view.grin_exhausted == 0);
+    CHECK(s.view.grin_segments > 0);
+}

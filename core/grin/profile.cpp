@@ -77,6 +77,17 @@ IndexGradient index_and_gradient(const EarthAtmosphere& p, const Vec3& x, double
 }
 
 // ---------------------------------------------------------------------------------------
+// A sampled field (core/grin/grid.h): the spline in grid coordinates u = (x − origin)/spacing.
+
+IndexGradient index_and_gradient(const SampledGrid& p, const Vec3& x, double l) {
+    const SplineValue s = tricubic_bspline(*p.coefficients, p.dims, (x - p.origin).cwiseQuotient(p.spacing));
+    const Vec3 grad = s.gradient.cwiseQuotient(p.spacing);
+    if (p.quantity == GridQuantity::index) return {s.value, grad};
+    const double r = reference_refractivity(p, l);  // n − 1 = (n_ref − 1)·q, Gladstone–Dale
+    return {1.0 + r * (p.relative ? s.value - 1.0 : s.value), r * grad};
+}
+
+// ---------------------------------------------------------------------------------------
 // Rods: r the distance from the axis, v the vector from the axis to x.
 
 namespace {
@@ -117,6 +128,7 @@ REFRACT_GRIN_FROM_BOTH(SechRod)
 REFRACT_GRIN_FROM_BOTH(ParabolicRod)
 REFRACT_GRIN_FROM_BOTH(TabulatedRadial)
 REFRACT_GRIN_FROM_BOTH(EarthAtmosphere)
+REFRACT_GRIN_FROM_BOTH(SampledGrid)
 #undef REFRACT_GRIN_FROM_BOTH
 
 bool dispersive(const LinearHeight& p) { return p.n0.B != 0; }
@@ -127,6 +139,7 @@ bool dispersive(const SechRod& p) { return p.n0.B != 0; }
 bool dispersive(const ParabolicRod& p) { return p.n0.B != 0; }
 bool dispersive(const TabulatedRadial&) { return false; }
 bool dispersive(const EarthAtmosphere&) { return true; }
+bool dispersive(const SampledGrid& p) { return p.quantity == GridQuantity::temperature; }
 bool dispersive(const Profile& p) {
     return std::visit([](const auto& k) { return dispersive(k); }, p);
 }
@@ -306,6 +319,32 @@ struct Check {
     }
     void operator()(EarthAtmosphere& p) const {
         finite_vec(p.centre, path + "/centre");  // the air's state is checked when it is built
+    }
+    void operator()(SampledGrid& p) const {
+        // The grid's box must hold the region (the field outside it would be made up).
+        const Vec3 lo = grid_lo(p), hi = grid_hi(p);
+        const double margin = 1e-9 * (hi - lo).norm();
+        for (int a = 0; a < 3; ++a) {
+            const auto [rlo, rhi] = extent(where, Vec3::Unit(a));
+            if (rlo < lo[a] - margin || rhi > hi[a] + margin) {
+                std::string box, region;
+                for (int b = 0; b < 3; ++b) {
+                    const auto [u0, u1] = extent(where, Vec3::Unit(b));
+                    box += (b ? " × [" : "[") + format_value(lo[b]) + ", " + format_value(hi[b]) + "]";
+                    region += (b ? " × [" : "[") + format_value(u0) + ", " + format_value(u1) + "]";
+                }
+                throw InputError(path + "/" + p.field + ": the grid's box " + box +
+                                 " does not cover the medium's region " + region);
+            }
+        }
+        if (p.quantity == GridQuantity::index) {
+            refuse_low(p.coefficient_min, p.coefficient_min, "/" + p.field, "a spline coefficient of");
+            return;
+        }
+        for (double l : {l0, l1}) {  // n − 1 = (n_ref − 1)·q ≥ (n_ref − 1)·min q
+            const double n = 1.0 + reference_refractivity(p, l) * (p.coefficient_min - (p.relative ? 1.0 : 0.0));
+            refuse_low(n, l * 1000, "/" + p.field, "the wavelength (nm)");
+        }
     }
 };
 }  // namespace

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <refract/core/grin/atmosphere.h>
+#include <refract/core/grin/grid.h>
 #include <refract/core/grin/region.h>
 
 namespace refract::grin {
@@ -89,8 +90,13 @@ struct EarthAtmosphere {
     Atmosphere air{};
 };
 
+// A sampled field of the index or of the air's temperature (core/grin/grid.h): the
+// tricubic spline through the samples; dispersive for a temperature grid (Ciddor's air).
+// Outside its box the field is held at the box's nearest point (validate refuses a grid
+// that does not cover the medium's region).
+
 using Profile = std::variant<LinearHeight, ExponentialHeight, Luneburg, MaxwellFishEye, SechRod, ParabolicRod,
-                             TabulatedRadial, EarthAtmosphere>;
+                             TabulatedRadial, EarthAtmosphere, SampledGrid>;
 
 struct IndexGradient {
     double n;
@@ -110,6 +116,7 @@ REFRACT_GRIN_PROFILE_OVERLOADS(SechRod)
 REFRACT_GRIN_PROFILE_OVERLOADS(ParabolicRod)
 REFRACT_GRIN_PROFILE_OVERLOADS(TabulatedRadial)
 REFRACT_GRIN_PROFILE_OVERLOADS(EarthAtmosphere)
+REFRACT_GRIN_PROFILE_OVERLOADS(SampledGrid)
 REFRACT_GRIN_PROFILE_OVERLOADS(Profile)
 #undef REFRACT_GRIN_PROFILE_OVERLOADS
 // dispersive(): the index depends on the wavelength (a base index with a Cauchy B ≠ 0, the air).

@@ -1,0 +1,111 @@
+// Sampled gradient-index fields from and to OpenVDB files (core/grin/grid.h): the one file of
+// refract that includes OpenVDB's headers.
+#include <refract/core/grin/grid.h>
+
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+
+#include <openvdb/openvdb.h>
+
+#include <refract/geometry/error.h>
+#include <refract/geometry/format.h>
+
+namespace refract::grin {
+
+namespace {
+
+void initialise() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+// The dense samples of a scalar grid over its active voxels' bounding box.
+template <typename GridT>
+GridSamples dense(const GridT& grid, const std::string& where) {
+    const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+    if (box.empty()) throw InputError(where + "/grid: '" + clip_echo(grid.getName()) + "' has no active voxels");
+    const openvdb::math::Transform& t = grid.transform();
+    if (!t.isLinear()) throw InputError(where + "/file: the grid's voxel transform is not linear (frustum)");
+    // A linear transform without rotation or shear: index (i, j, k) ↦ origin + (i, j, k)·voxel size.
+    const openvdb::Mat4d m = t.baseMap()->getAffineMap()->getMat4();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (r != c && std::abs(m(r, c)) > 1e-12 * std::abs(m(r, r)))
+                throw InputError(where + "/file: the grid's voxel transform rotates or shears (only a scale and a "
+                                         "translation are supported)");
+    const openvdb::Vec3d lo = t.indexToWorld(box.min());
+    const openvdb::Vec3d step = t.voxelSize();
+    GridSamples s;
+    const openvdb::Coord dim = box.dim();
+    s.dims = {dim.x(), dim.y(), dim.z()};
+    s.origin = Vec3(lo.x(), lo.y(), lo.z());
+    s.spacing = Vec3(step.x(), step.y(), step.z());
+    s.values.resize(static_cast<size_t>(dim.x()) * static_cast<size_t>(dim.y()) * static_cast<size_t>(dim.z()));
+    auto acc = grid.getConstAccessor();
+    size_t n = 0;
+    for (int k = 0; k < dim.z(); ++k)
+        for (int j = 0; j < dim.y(); ++j)
+            for (int i = 0; i < dim.x(); ++i)
+                s.values[n++] = static_cast<double>(acc.getValue(box.min().offsetBy(i, j, k)));
+    return s;
+}
+
+}  // namespace
+
+GridSamples read_vdb_grid(const std::string& path, const std::string& grid_name, const std::string& where) {
+    initialise();
+    if (!std::filesystem::is_regular_file(path))
+        throw InputError(where + "/file: no such file '" + clip_echo(path) + "'");
+    openvdb::GridBase::Ptr base;
+    std::string names;
+    try {
+        openvdb::io::File f(path);
+        f.open(false);  // no delayed loading: the file is read once
+        for (auto it = f.beginName(); it != f.endName(); ++it) {
+            const std::string n = it.gridName();
+            names += (names.empty() ? "" : ", ") + n;
+            if (!base && (grid_name.empty() ? true : n == grid_name)) {
+                openvdb::GridBase::Ptr g = f.readGrid(n);
+                if (grid_name.empty() && !g->isType<openvdb::FloatGrid>() && !g->isType<openvdb::DoubleGrid>())
+                    continue;  // the first scalar grid
+                base = g;
+            }
+        }
+        f.close();
+    } catch (const openvdb::Exception& e) {
+        throw InputError(where + "/file: cannot read '" + clip_echo(path) + "' as an OpenVDB file (" + e.what() + ")");
+    }
+    if (!base) {
+        if (grid_name.empty()) throw InputError(where + "/file: '" + clip_echo(path) + "' holds no float grid");
+        throw InputError(where + "/grid: no grid '" + clip_echo(grid_name) + "' in '" + clip_echo(path) + "' (" +
+                         (names.empty() ? std::string("none") : clip_echo(names)) + ")");
+    }
+    if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) return dense(*f, where);
+    if (auto d = openvdb::gridPtrCast<openvdb::DoubleGrid>(base)) return dense(*d, where);
+    throw InputError(where + "/grid: '" + clip_echo(base->getName()) + "' is a " + base->valueType() +
+                     " grid, a float or double grid is needed");
+}
+
+void write_vdb_grid(const std::string& path, const std::string& grid_name, const GridSamples& s) {
+    initialise();
+    if (!(std::abs(s.spacing.x() - s.spacing.y()) <= 1e-12 * s.spacing.x() &&
+          std::abs(s.spacing.x() - s.spacing.z()) <= 1e-12 * s.spacing.x()))
+        throw std::runtime_error("write_vdb_grid: the spacing must be the same along x, y and z");
+    openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create(0.0f);
+    g->setName(grid_name);
+    openvdb::math::Transform::Ptr t = openvdb::math::Transform::createLinearTransform(s.spacing.x());
+    t->postTranslate(openvdb::Vec3d(s.origin.x(), s.origin.y(), s.origin.z()));
+    g->setTransform(t);
+    auto acc = g->getAccessor();
+    size_t n = 0;
+    for (int k = 0; k < s.dims[2]; ++k)
+        for (int j = 0; j < s.dims[1]; ++j)
+            for (int i = 0; i < s.dims[0]; ++i) acc.setValueOn(openvdb::Coord(i, j, k), static_cast<float>(s.values[n++]));
+    openvdb::io::File f(path);
+    openvdb::GridPtrVec grids{g};
+    f.write(grids);
+    f.close();
+}
+
+}  // namespace refract::grin
