@@ -9,7 +9,7 @@ def sampled_luneburg(n=12):
     """A Luneburg-like index sampled on an n³ grid over [-1.1, 1.1]³, as a NumPy array."""
     x = np.linspace(-1.1, 1.1, n)
     X, Y, Z = np.meshgrid(x, x, x, indexing="ij")
-    r2 = np.minimum(X**2 + Y**2 + Z**2, 1.75)
+    r2 = np.minimum(X**2 + Y**2 + Z**2, 1.2)
     return np.sqrt(2.0 - r2), float(x[1] - x[0])
 
 
