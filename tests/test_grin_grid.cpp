@@ -173,6 +173,15 @@ TEST_CASE("Gladstone-Dale law for heated air: n(T) - 1 = (n_ref - 1) T_ref / T, 
     AirState hot;
     hot.temperature_K = 330.0;
     CHECK(std::abs((n - 1) / (ciddor_index(0.55, hot) - 1) - 1) < 1e-3);
+    // Relative to the reference air: 1 at T_ref, (n_ref − 1)(T_ref/T − 1) below 1 in hotter air.
+    SampledGrid rel = g;
+    rel.relative = true;
+    CHECK(index(rel, Vec3::Zero(), 0.55) - 1 == Approx((n_ref - 1) * (288.15 / 330.0 - 1)).epsilon(1e-12));
+    const SampledGrid at_ref = sampled_grid(sample(3, -1, 1, [](const Vec3&) { return 288.15; }), GridQuantity::temperature,
+                                            288.15, 101325.0, "values", "t");
+    rel = at_ref;
+    rel.relative = true;
+    CHECK(std::abs(index(rel, Vec3(0.3, 0.1, 0.2), 0.55) - 1.0) < 1e-15);
     // It disperses: bluer light, the higher index.
     CHECK(index(g, Vec3::Zero(), 0.45) > index(g, Vec3::Zero(), 0.65));
     CHECK(dispersive(Profile{g}));
