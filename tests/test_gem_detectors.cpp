@@ -1,0 +1,125 @@
+// The nail-head and fish-eye detectors (experiments/gem_detectors.h, docs/gem-metrics.md
+// "Nail-head and fish-eye"): the trade's limits, a pavilion steeper than about 42–43°
+// gives a dark centre and one shallower than about 39° the girdle's reflection in the
+// table; Tolkowsky's cut shows neither. Small ray counts, fixed seeds.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include <refract/experiments/gem_cuts.h>
+#include <refract/experiments/gem_detectors.h>
+#include <refract/experiments/gem_sweep.h>
+
+using namespace refract;
+using namespace refract::gem_metrics;
+namespace sw = refract::experiments::gem_sweep;
+namespace gc = refract::experiments::gem_cuts;
+
+namespace {
+
+// Tolkowsky's crown and table with the GIA default's girdle (his knife edge has none to
+// reflect) and another pavilion angle; the light return's rays only matter (the detectors
+// use them), 3 wavelengths.
+GemMetrics tolkowsky_with_pavilion(double pavilion, int rays, const std::string& observer = "aset") {
+    const BrilliantCut c = gc::tolkowsky_with_girdle(pavilion);
+    MetricOptions o;
+    o.rays = rays;
+    o.wavelengths = 3;
+    o.observer = observer;
+    o.fire_divisor = o.scintillation_divisor = rays;
+    o.spot_rotations = 1;
+    const sw::Row r = sw::evaluate_cut(c, o);
+    REQUIRE(r.possible);
+    return r.metrics;
+}
+
+}  // namespace
+
+TEST_CASE("Nail-head detector fires on a 43.75 degree pavilion under a 40 degree head and not on Tolkowsky's 40.75",
+          "[gem][detectors]") {
+    // Sasian's 40 deg head obscuration: the table's centre leaves within it from about 41.2 deg.
+    const GemMetrics steep = tolkowsky_with_pavilion(43.75, 1024, "sasian"),
+                     tolk = tolkowsky_with_pavilion(40.75, 1024, "sasian");
+    CHECK(shows_nail_head(steep.nail_head));
+    CHECK_FALSE(shows_nail_head(tolk.nail_head));
+    CHECK(steep.nail_head.value - tolk.nail_head.value > 3 * std::hypot(steep.nail_head.error, tolk.nail_head.error));
+    CHECK(steep.nail_head.error > 0);
+    CHECK(steep.nail_head.error < 0.1);
+    CHECK(shows_nail_head(tolkowsky_with_pavilion(42.5, 1024, "sasian").nail_head));
+    // ASET's 15 deg head: Tolkowsky's centre is not dark either (the steep cut is marginal
+    // under it, docs/gem-metrics.md).
+    CHECK_FALSE(shows_nail_head(tolkowsky_with_pavilion(40.75, 1024, "aset").nail_head));
+}
+
+TEST_CASE("Fish-eye detector fires on a 37.25 degree pavilion and not on Tolkowsky's 40.75", "[gem][detectors]") {
+    const GemMetrics shallow = tolkowsky_with_pavilion(37.25, 1024), tolk = tolkowsky_with_pavilion(40.75, 1024);
+    CHECK(shows_fish_eye(shallow.fish_eye));
+    CHECK_FALSE(shows_fish_eye(tolk.fish_eye));
+    CHECK_FALSE(shows_nail_head(shallow.nail_head));
+    CHECK_FALSE(shows_fish_eye(tolkowsky_with_pavilion(43.75, 512).fish_eye));
+    CHECK(shallow.fish_eye.error > 0);
+    // The knife-edge girdle of Tolkowsky's own preset has nothing to reflect.
+    MetricOptions o;
+    o.rays = 128;
+    o.wavelengths = 3;
+    BrilliantCut knife = brilliant_preset("tolkowsky");
+    knife.pavilion_angle = 37.25;
+    CHECK(sw::evaluate_cut(knife, o).metrics.fish_eye.value == 0.0);
+}
+
+TEST_CASE("Nail-head detector sees the head: a larger head darkens the centre, the whole hemisphere does not",
+          "[gem][detectors]") {
+    const GemMetrics sasian = tolkowsky_with_pavilion(42.5, 256, "sasian"),
+                     aset = tolkowsky_with_pavilion(42.5, 256, "aset"),
+                     hemi = tolkowsky_with_pavilion(43.75, 256, "hemisphere");
+    CHECK(sasian.nail_head.value > aset.nail_head.value);
+    CHECK_FALSE(shows_nail_head(hemi.nail_head));
+    // The same eye rays under every observer: the fish-eye does not depend on the model.
+    CHECK(sasian.fish_eye.value == aset.fish_eye.value);
+}
+
+TEST_CASE("gem-cuts optimum on the grid's edge is said to be, one inside is not", "[gem][findings]") {
+    sw::Grid g = sw::single_cut_grid(brilliant_preset("gia-default"));
+    sw::set_axis(g, sw::parse_axis("crown_angle", "23:41:1"));
+    sw::set_axis(g, sw::parse_axis("pavilion_angle", "38:43:0.25"));
+    gc::Optimum o;
+    o.metric = "light_return";
+    o.best.cut = g.base;
+    o.best.cut.crown_angle = 25;
+    o.best.cut.pavilion_angle = 43;
+    o.edge = gc::edge_of(g, o.best.cut);
+    CHECK(o.edge.pavilion_high);
+    CHECK_FALSE(o.edge.crown_low);
+    CHECK(gc::optimum_sentence(o, g).find("lies on the grid's edge (pavilion 43°, the grid's steepest)") !=
+          std::string::npos);
+    o.best.cut.pavilion_angle = 41;
+    o.edge = gc::edge_of(g, o.best.cut);
+    CHECK_FALSE(o.edge.any());
+    CHECK(gc::optimum_sentence(o, g).find("lies inside the grid") != std::string::npos);
+}
+
+TEST_CASE("gem-cuts detector onsets: the nail-head from the steepest firing run, the fish-eye up to the shallowest",
+          "[gem][findings]") {
+    sw::Sweep s;
+    s.grid = sw::single_cut_grid(brilliant_preset("gia-default"));
+    sw::set_axis(s.grid, sw::parse_axis("crown_angle", "30:35:5"));
+    sw::set_axis(s.grid, sw::parse_axis("pavilion_angle", "38:43:1"));
+    std::vector<sw::Row> rows;
+    for (std::int64_t i = 0; i < s.grid.size(); ++i) {
+        sw::Row r;
+        r.index = i;
+        r.cut = s.grid.cut(i);
+        r.possible = true;
+        const double p = r.cut.pavilion_angle;
+        r.metrics.nail_head.value = p >= 42 ? 0.8 : p == 39 ? 0.9 : 0.1;  // 39: an isolated firing cell
+        r.metrics.fish_eye.value = r.cut.crown_angle == 30 && p <= 39 ? 0.2 : 0.0;
+        rows.push_back(r);
+    }
+    const auto nail = gc::nail_head_onsets(s, rows), fish = gc::fish_eye_limits(s, rows);
+    REQUIRE(nail.size() == 2);
+    CHECK(nail[0].pavilion == 42);
+    CHECK(nail[1].pavilion == 42);
+    CHECK(fish[0].pavilion == 39);
+    CHECK(std::isnan(fish[1].pavilion));
+}
