@@ -237,9 +237,9 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
             s << " fish-eye " << fmt(m.fish_eye.value, 2) << " ± " << fmt(m.fish_eye.error, 1) << ")";
         }
         s << ", each in the ASET, ideal-scope and brilliance viewers (" << r.render_size << "² pixels, one eye ray each, "
-          << "the band nearest 560 nm). A nail-head shows as a central zone in the viewer's own colour (ASET blue, the "
-             "ideal-scope's black hole, dark in brilliance), a fish-eye as a ring in the table of light that "
-             "left through the girdle.\n";
+          << "the band nearest 560 nm). A nail-head shows as a central zone in the viewer's own colour (ASET blue, dark "
+             "in brilliance; the ideal-scope's black hole only when the centre's light leaves within 10° of the "
+             "axis), a fish-eye as a ring in the table of light that left through the girdle.\n";
         image_grid_figure(dir, "gem_cuts_renders", static_cast<int>(r.renders.size()),
                           static_cast<int>(render_views().size()), panels,
                           "Tolkowsky's crown and table, three pavilion angles, in the viewers", 1.0, r.quick ? 120 : 200);

@@ -123,3 +123,73 @@ TEST_CASE("gem-cuts detector onsets: the nail-head from the steepest firing run,
     CHECK(fish[0].pavilion == 39);
     CHECK(std::isnan(fish[1].pavilion));
 }
+
+TEST_CASE("gem-cuts trend slopes recover a known plane and line, their errors zero on exact data", "[gem][findings]") {
+    std::vector<sw::Row> rows;
+    for (int c = 0; c < 4; ++c)
+        for (int p = 0; p < 3; ++p) {
+            sw::Row r;
+            r.possible = true;
+            r.cut = brilliant_preset("gia-default");
+            r.cut.crown_angle = 30 + c;
+            r.cut.pavilion_angle = 40 + 0.5 * p;
+            r.cut.table = 52 + 2 * (c * 3 + p);
+            r.metrics.light_return.value = 0.9 - 0.01 * r.cut.crown_angle + 0.02 * r.cut.pavilion_angle;
+            r.metrics.fire.value = 0.5 - 0.003 * r.cut.table;
+            rows.push_back(r);
+        }
+    const auto [crown, pavilion] = gc::crown_pavilion_slopes(rows, "light_return");
+    CHECK(crown.value == Approx(-0.01).margin(1e-12));
+    CHECK(pavilion.value == Approx(0.02).margin(1e-12));
+    CHECK(crown.error == Approx(0).margin(1e-9));
+    CHECK(crown.falls());
+    CHECK_FALSE(crown.rises());
+    const gc::Slope t = gc::table_slope(rows, "fire");
+    CHECK(t.value == Approx(-0.003).margin(1e-12));
+    CHECK(t.falls());
+    // Noise as large as the trend: neither falls nor rises by 2 sigma.
+    rows[0].metrics.fire.value += 0.2;
+    rows[1].metrics.fire.value -= 0.2;
+    rows.back().metrics.fire.value += 0.2;
+    const gc::Slope noisy = gc::table_slope(rows, "fire");
+    CHECK(noisy.error > 0);
+    CHECK_FALSE(noisy.rises());
+}
+
+TEST_CASE("gem-cuts literature: Tolkowsky 'among the best' only when few cuts beat him by 2 sigma", "[gem][findings]") {
+    gc::Result r;
+    gc::ObserverMap m;
+    m.observer = "aset";
+    for (int i = 0; i < 20; ++i) {
+        sw::Row row;
+        row.possible = true;
+        row.cut = brilliant_preset("gia-default");
+        row.cut.crown_angle = 30 + i % 5;
+        row.cut.pavilion_angle = 40 + 0.25 * (i / 5);
+        row.metrics.light_return = {0.70 + 0.001 * i, 0.005};
+        m.rows.push_back(row);
+    }
+    m.tolkowsky.possible = true;
+    m.tolkowsky.cut = brilliant_preset("tolkowsky");
+    m.tolkowsky.metrics.light_return = {0.715, 0.005};  // beaten by 2 sigma (0.0141) only by 0.730 and up: 0 cuts
+    r.observers.push_back(m);
+    r.nail_head_onset.push_back({});
+    r.fish_eye_limit.push_back({});
+    auto find = [](const std::vector<gc::LiteratureRow>& rows, const std::string& key) {
+        for (const auto& x : rows)
+            if (x.key == key) return x;
+        FAIL("no row " << key);
+        return gc::LiteratureRow{};
+    };
+    auto best = find(gc::literature(r), "tolkowsky_among_best");
+    REQUIRE(best.agrees.size() == 1);
+    CHECK(best.agrees[0]);
+    r.observers[0].tolkowsky.metrics.light_return = {0.69, 0.005};  // 0.705 and up beat him: 15 of 20
+    best = find(gc::literature(r), "tolkowsky_among_best");
+    CHECK_FALSE(best.agrees[0]);
+    CHECK(best.numbers[0] == "15 of 20 cuts (75 %)");
+    // No detector grid: the nail-head row cannot agree and says why.
+    const auto nail = find(gc::literature(r), "nail_head_steep");
+    CHECK_FALSE(nail.agrees[0]);
+    CHECK(nail.numbers[0] == "from none in the grid");
+}
