@@ -113,7 +113,9 @@ struct RenderedCut {
     std::string label;   // "fish-eye (pavilion 37.5°)", ...
     gem_sweep::Row row;  // measured as the map's cuts (aset), the detectors included
     std::vector<std::pair<std::string, Image>> views;  // render_views() order
+    std::vector<std::pair<double, Image>> tilts;       // the ASET view at render_tilts()
 };
+std::vector<double> render_tilts();  // 0, 10, 20, 30 degrees
 const std::vector<std::string>& render_views();  // aset, ideal-scope, brilliance
 std::vector<double> render_pavilions();          // 37.25, 40.75, 43.75
 // Tolkowsky's cut with the GIA default's girdle (3 %; his knife edge has no girdle to

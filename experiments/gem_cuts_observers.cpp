@@ -63,6 +63,8 @@ const std::vector<std::string>& render_views() {
 
 std::vector<double> render_pavilions() { return {37.25, 40.75, 43.75}; }
 
+std::vector<double> render_tilts() { return {0.0, 10.0, 20.0, 30.0}; }
+
 BrilliantCut tolkowsky_with_girdle(double pavilion) {
     BrilliantCut c = brilliant_preset("tolkowsky");
     c.girdle = brilliant_preset("gia-default").girdle;
@@ -86,6 +88,9 @@ void add_renders(Result& r) {
             const Gem gem = build_brilliant(cut);
             for (const std::string& v : render_views())
                 c.views.emplace_back(v, gem_metrics::render_view(gem, v, r.render_size, 1, m));
+            for (const double tilt : render_tilts())
+                c.tilts.emplace_back(tilt, tilt == 0.0 ? c.views.front().second
+                                                       : gem_metrics::render_view(gem, "aset", r.render_size, 1, m, tilt));
         }
         r.renders.push_back(std::move(c));
     }

@@ -219,7 +219,7 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
             const std::string base = "gem_cuts_render_" + sw::number(c.row.cut.pavilion_angle);
             for (const auto& [view, img] : c.views) {
                 write_image(dir + "/" + base + "_" + view + ".png", img);
-                panels.push_back({base + "_" + view + ".png", c.label + ", " + view});
+                panels.push_back({base + "_" + view + ".png", sw::number(c.row.cut.pavilion_angle) + "°, " + view});
             }
             const auto& m = c.row.metrics;
             // The nail-head under each observer the row carries (the main one and `also`).
@@ -243,6 +243,22 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
         image_grid_figure(dir, "gem_cuts_renders", static_cast<int>(r.renders.size()),
                           static_cast<int>(render_views().size()), panels,
                           "Tolkowsky's crown and table, three pavilion angles, in the viewers", 1.0, r.quick ? 120 : 200);
+        std::vector<Panel> tilt_panels;
+        for (const RenderedCut& c : r.renders)
+            for (const auto& [tilt, img] : c.tilts) {
+                const std::string f =
+                    "gem_cuts_render_" + sw::number(c.row.cut.pavilion_angle) + "_aset_tilt" + sw::number(tilt) + ".png";
+                write_image(dir + "/" + f, img);
+                tilt_panels.push_back({f, sw::number(c.row.cut.pavilion_angle) + "°, tilt " + sw::number(tilt) + "°"});
+            }
+        if (!tilt_panels.empty()) {
+            image_grid_figure(dir, "gem_cuts_tilts", static_cast<int>(r.renders.size()),
+                              static_cast<int>(render_tilts().size()), tilt_panels,
+                              "The same cuts in ASET, the stone tilted 0, 10, 20 and 30 degrees", 1.0,
+                              r.quick ? 120 : 200);
+            s << "\nThe tilt series `gem_cuts_tilts.png` / `.pdf`: the same three cuts in ASET, the stone tilted by "
+                 "0°, 10°, 20° and 30° about the image's horizontal axis (the viewer fixed).\n";
+        }
     }
 
     s << "\n## The literature side by side\n\n"

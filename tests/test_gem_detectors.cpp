@@ -9,6 +9,7 @@
 
 #include <refract/experiments/gem_cuts.h>
 #include <refract/experiments/gem_detectors.h>
+#include <refract/experiments/gem_observation.h>
 #include <refract/experiments/gem_sweep.h>
 
 using namespace refract;
@@ -192,4 +193,21 @@ TEST_CASE("gem-cuts literature: Tolkowsky 'among the best' only when few cuts be
     const auto nail = find(gc::literature(r), "nail_head_steep");
     CHECK_FALSE(nail.agrees[0]);
     CHECK(nail.numbers[0] == "from none in the grid");
+}
+
+TEST_CASE("Gem viewer tilt series: tilt 0 is the face-up image to the bit, a tilted stone shows another pattern",
+          "[gem][detectors]") {
+    const Gem gem = build_brilliant(gc::tolkowsky_with_girdle(40.75));
+    MetricOptions o;
+    o.wavelengths = 3;
+    const Image up = render_view(gem, "aset", 24, 1, o), zero = render_view(gem, "aset", 24, 1, o, 0.0),
+                tilted = render_view(gem, "aset", 24, 1, o, 20.0);
+    double same = 0, diff = 0;
+    for (int j = 0; j < 24; ++j)
+        for (int i = 0; i < 24; ++i) {
+            same += (up.at(i, j) - zero.at(i, j)).norm();
+            diff += (up.at(i, j) - tilted.at(i, j)).norm();
+        }
+    CHECK(same == 0.0);
+    CHECK(diff > 1.0);
 }
