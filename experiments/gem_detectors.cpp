@@ -27,8 +27,10 @@ Detectors::Detectors(const Gem& gem) : gem_(&gem) {
         }
     }
     if (table_ >= 0)
-        for (const Vec3& v : gem.facets[static_cast<size_t>(table_)].polygon)
+        for (const Vec3& v : gem.facets[static_cast<size_t>(table_)].polygon) {
             table_radius_ = std::max(table_radius_, std::hypot(v.x(), v.y()));
+            table_z_ = v.z();
+        }
 }
 
 void Detectors::add(const Ray& eye_ray, double head_weight, double girdle_weight) {
@@ -36,9 +38,15 @@ void Detectors::add(const Ray& eye_ray, double head_weight, double girdle_weight
     const auto hit = intersect(gem_->solid, eye_ray, 0.0, 1e30);
     if (!hit) return;
     const bool on_table = hit->facet == table_;
-    if (on_table && std::hypot(hit->point.x(), hit->point.y()) < kNailHeadZone * table_radius_) centre_head_.add(head_weight);
-    else rest_head_.add(head_weight);
+    if (!(on_table && std::hypot(hit->point.x(), hit->point.y()) < kNailHeadZone * table_radius_))
+        rest_head_.add(head_weight);
     if (on_table) table_girdle_.add(girdle_weight);
+}
+
+Ray Detectors::central_ray(const Vec3& viewer, double u1, double u2, double distance) const {
+    const double r = kNailHeadZone * table_radius_ * std::sqrt(u1), phi = 2 * M_PI * u2;
+    const Vec3 p(r * std::cos(phi), r * std::sin(phi), table_z_);
+    return {p + distance * viewer, -viewer};
 }
 
 Metric Detectors::nail_head() const {

@@ -5,7 +5,7 @@
 // whether the cut shows it. Defined here only.
 //
 // - Nail-head (a dark centre face-up): the share of the light of the eye rays entering
-//   through the central zone of the table (within kNailHeadZone of the table's radius) that
+//   through the central zone of the table (rays of its own, drawn uniformly over the zone) (within kNailHeadZone of the table's radius) that
 //   comes from the observer's head, the directions the observer model blocks (leaving
 //   through the crown within its head cone of the eye), less the same share over the rest
 //   of the face: the centre darker than the face by the head's reflection. In a deep pavilion the table's
@@ -30,7 +30,7 @@
 namespace refract::gem_metrics {
 
 constexpr double kNailHeadZone = 0.3;       // the central zone: within 0.3 of the table's radius
-constexpr double kNailHeadThreshold = 0.4;  // the centre's head share 0.4 above the face's
+constexpr double kNailHeadThreshold = 0.375;  // the centre's head share 0.375 above the face's
 constexpr double kFishEyeThreshold = 0.025;  // 2.5 % of the table's light from the girdle
 
 // "shows a nail-head / fish-eye": the value at or above its threshold.
@@ -43,9 +43,17 @@ public:
     // The table: the facet whose outward normal is closest to +z (within 1e-9 of it; none:
     // both detectors 0), its radius the largest distance of its vertices from the axis.
     explicit Detectors(const Gem& gem);
-    // One eye ray (in the stone's frame) face-up: the weight of its exits through the crown
-    // within the observer's head cone, and of its exits through the girdle.
+    // One light-return eye ray (in the stone's frame) face-up: the weight of its exits
+    // through the crown within the observer's head cone, and of its exits through the
+    // girdle. Rays entering the central zone are left to add_centre.
     void add(const Ray& eye_ray, double head_weight, double girdle_weight);
+    // The central zone's own eye rays (central_ray), which sample it far more densely than
+    // the light-return rays (about 2 % of which fall in it): their head weight.
+    bool has_table() const { return table_ >= 0; }
+    // The eye ray along −viewer through the point of the central zone drawn from u1, u2 in
+    // [0, 1) (uniform over the disc), starting `distance` from the table.
+    Ray central_ray(const Vec3& viewer, double u1, double u2, double distance) const;
+    void add_centre(double head_weight) { centre_head_.add(head_weight); }
     Metric nail_head() const;
     Metric fish_eye() const;
 
@@ -63,7 +71,7 @@ private:
     };
     const Gem* gem_;
     int table_ = -1;
-    double table_radius_ = 0;
+    double table_radius_ = 0, table_z_ = 0;
     Sum centre_head_, rest_head_, table_girdle_;
 };
 

@@ -191,6 +191,31 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
         lr.add(returned / static_cast<double>(observer.tilts_deg.size()));
         leak.add(pav);
     }
+    // The nail-head's central zone: eye rays of its own (stream 4), a quarter as many as the
+    // light return's, each viewer drawn as theirs, face-up (gem_detectors.h).
+    if (detectors.has_table())
+        for (int i = 0; i < std::max(4, N / 4); ++i) {
+            Rng rng(o.seed, 4, static_cast<std::uint64_t>(i));
+            Vec3 v(0, 0, 1);
+            if (o.viewer_cone_deg > 0) {
+                const double c = 1 - rng.uniform() * (1 - std::cos(o.viewer_cone_deg * M_PI / 180)),
+                             phi = 2 * M_PI * rng.uniform();
+                const double sn = std::sqrt(std::max(0.0, 1 - c * c));
+                v = Vec3(sn * std::cos(phi), sn * std::sin(phi), c);
+            }
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            t.trace(detectors.central_ray(v, u1, u2, 4.0 * o.frame), t.band_by_luminance(golden(i)), exits);
+            double head = 0;
+            std::fill(head_also.begin(), head_also.end(), 0.0);
+            for (const auto& e : exits) {
+                if (e.kind < 0 || t.kind_regions()[static_cast<size_t>(e.kind)] != Region::Crown || e.dir.dot(kUp) <= 0.0)
+                    continue;
+                head += e.dir.dot(v) >= cos_head ? e.weight : 0.0;
+                for (size_t j = 0; j < NA; ++j) head_also[j] += e.dir.dot(v) >= cos_also[j] ? e.weight : 0.0;
+            }
+            detectors.add_centre(head);
+            for (size_t j = 0; j < NA; ++j) det_also[j].add_centre(head_also[j]);
+        }
     m.light_return = lr.metric();
     m.leakage = leak.metric();
     m.nail_head = detectors.nail_head();

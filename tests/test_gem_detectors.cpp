@@ -37,7 +37,7 @@ GemMetrics tolkowsky_with_pavilion(double pavilion, int rays, const std::string&
 
 }  // namespace
 
-TEST_CASE("Nail-head detector fires on a 43.75 degree pavilion under a 40 degree head and not on Tolkowsky's 40.75",
+TEST_CASE("Nail-head detector fires on a 43.75 degree pavilion and not on Tolkowsky's 40.75, from 42.5 under a 40 degree head",
           "[gem][detectors]") {
     // Sasian's 40 deg head obscuration: the table's centre leaves within it from about 41.2 deg.
     const GemMetrics steep = tolkowsky_with_pavilion(43.75, 1024, "sasian"),
@@ -48,8 +48,9 @@ TEST_CASE("Nail-head detector fires on a 43.75 degree pavilion under a 40 degree
     CHECK(steep.nail_head.error > 0);
     CHECK(steep.nail_head.error < 0.1);
     CHECK(shows_nail_head(tolkowsky_with_pavilion(42.5, 1024, "sasian").nail_head));
-    // ASET's 15 deg head: Tolkowsky's centre is not dark either (the steep cut is marginal
-    // under it, docs/gem-metrics.md).
+    // ASET's 15 deg head: the centre's exit falls inside it only above about 43.4 deg.
+    CHECK(shows_nail_head(tolkowsky_with_pavilion(43.75, 1024, "aset").nail_head));
+    CHECK_FALSE(shows_nail_head(tolkowsky_with_pavilion(43.25, 1024, "aset").nail_head));
     CHECK_FALSE(shows_nail_head(tolkowsky_with_pavilion(40.75, 1024, "aset").nail_head));
 }
 
