@@ -191,9 +191,9 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
          "table's central zone (within "
       << fmt(gem_metrics::kNailHeadZone, 2)
       << " of its radius) that comes from the observer's head, less that share over the rest of the face, shown at ≥ "
-      << fmt(gem_metrics::kNailHeadThreshold, 2) << "; fish-eye = the share of the table's light that leaves through "
+      << fmt(gem_metrics::kNailHeadThreshold, 3) << "; fish-eye = the share of the table's light that leaves through "
          "the girdle, shown at ≥ "
-      << fmt(gem_metrics::kFishEyeThreshold, 2) << ". Grid crown " << ph.grid.axes[1].text() << " × pavilion "
+      << fmt(gem_metrics::kFishEyeThreshold, 3) << ". Grid crown " << ph.grid.axes[1].text() << " × pavilion "
       << ph.grid.axes[2].text() << ", " << ph.metric.rays << " rays per cut; maps `gem_cuts_phenomena_OBSERVER.png`, "
       << "data `gem_cuts_phenomena.csv`.\n\n| crown |";
     for (const auto& o : r.observers) s << " nail-head from (" << o.observer << ") |";
