@@ -21,6 +21,8 @@ const gem_metrics::Metric& metric_of(const gem_metrics::GemMetrics& g, const std
     if (key == "light_return") return g.light_return;
     if (key == "fire") return g.fire;
     if (key == "leakage") return g.leakage;
+    if (key == "nail_head") return g.nail_head;
+    if (key == "fish_eye") return g.fish_eye;
     return g.scintillation;
 }
 
@@ -76,12 +78,51 @@ std::string command_of(const sw::Sweep& s, const std::string& output) {
     return c + " -o " + output;
 }
 
+Edge edge_of(const sw::Grid& grid, const BrilliantCut& cut) {
+    const sw::Axis &c = grid.axes[1], &p = grid.axes[2];
+    auto near = [](double a, double b) { return std::fabs(a - b) <= 1e-9; };
+    Edge e;
+    if (c.count > 1) {
+        e.crown_low = near(cut.crown_angle, c.value(0));
+        e.crown_high = near(cut.crown_angle, c.value(c.count - 1));
+    }
+    if (p.count > 1) {
+        e.pavilion_low = near(cut.pavilion_angle, p.value(0));
+        e.pavilion_high = near(cut.pavilion_angle, p.value(p.count - 1));
+    }
+    return e;
+}
+
+Optimum optimum_of(const MetricInfo& m, const std::vector<sw::Row>& rows, const sw::Row& tolk, const sw::Grid& grid) {
+    std::vector<const sw::Row*> ok;
+    for (const auto& row : rows)
+        if (row.possible) ok.push_back(&row);
+    // Best first; ties by index (deterministic).
+    std::stable_sort(ok.begin(), ok.end(), [&](const sw::Row* a, const sw::Row* b) {
+        return better(m, metric_of(a->metrics, m.key).value, metric_of(b->metrics, m.key).value);
+    });
+    Optimum o;
+    o.metric = m.key;
+    o.observer = tolk.metrics.observer;
+    if (!ok.empty()) o.best = *ok.front();
+    for (size_t i = 0; i < ok.size() && i < 5; ++i) o.top.push_back(*ok[i]);
+    o.tolkowsky = metric_of(tolk.metrics, m.key);
+    o.d_crown = o.best.cut.crown_angle - tolk.cut.crown_angle;
+    o.d_pavilion = o.best.cut.pavilion_angle - tolk.cut.pavilion_angle;
+    const gem_metrics::Metric& b = metric_of(o.best.metrics, m.key);
+    const double se = std::hypot(b.error, o.tolkowsky.error);
+    o.sigmas = se > 0 ? (b.value - o.tolkowsky.value) / se : 0;
+    o.edge = edge_of(grid, o.best.cut);
+    return o;
+}
+
 Result compute(const ExperimentOptions& opt) {
     const auto t0 = std::chrono::steady_clock::now();
     Result r;
     r.quick = opt.quick;
     r.main = crown_pavilion_sweep(opt.quick);
     r.detail = star_lower_half_sweep(opt.quick);
+    r.main.metric.also_observers = other_observers();  // the observer maps on the same rays
     r.main_rows = sw::run(r.main, sw::all_indices(r.main), opt.threads);
     r.detail_rows = sw::run(r.detail, sw::all_indices(r.detail), opt.threads);
     for (const char* p : {"tolkowsky", "gia-default"})
@@ -93,21 +134,7 @@ Result compute(const ExperimentOptions& opt) {
         std::vector<const sw::Row*> ok;
         for (const auto& row : r.main_rows)
             if (row.possible) ok.push_back(&row);
-        // Best first; ties by index (deterministic).
-        std::stable_sort(ok.begin(), ok.end(), [&](const sw::Row* a, const sw::Row* b) {
-            return better(m, metric_of(a->metrics, m.key).value, metric_of(b->metrics, m.key).value);
-        });
-        Optimum o;
-        o.metric = m.key;
-        if (!ok.empty()) o.best = *ok.front();
-        for (size_t i = 0; i < ok.size() && i < 5; ++i) o.top.push_back(*ok[i]);
-        o.tolkowsky = metric_of(tolk.metrics, m.key);
-        o.d_crown = o.best.cut.crown_angle - tolk.cut.crown_angle;
-        o.d_pavilion = o.best.cut.pavilion_angle - tolk.cut.pavilion_angle;
-        const gem_metrics::Metric& b = metric_of(o.best.metrics, m.key);
-        const double se = std::hypot(b.error, o.tolkowsky.error);
-        o.sigmas = se > 0 ? (b.value - o.tolkowsky.value) / se : 0;
-        r.optima.push_back(o);
+        r.optima.push_back(optimum_of(m, r.main_rows, tolk, r.main.grid));
 
         Sensitivity s;
         s.metric = m.key;
@@ -132,6 +159,10 @@ Result compute(const ExperimentOptions& opt) {
         s.crown_pavilion_spread = ok.empty() ? 0 : hi - lo;
         r.sensitivity.push_back(s);
     }
+    const auto t1 = std::chrono::steady_clock::now();
+    add_observer_maps(r, opt.threads);
+    r.observer_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    r.literature = literature(r);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.findings = judge(r);
     return r;
@@ -143,6 +174,12 @@ Findings judge(const Result& r) {
         const BrilliantCut &a = r.presets[0].second.cut, &b = r.presets[1].second.cut;
         f.presets_share_angles = a.crown_angle == b.crown_angle && a.pavilion_angle == b.pavilion_angle;
     }
+    for (const auto& x : r.observers)
+        for (const auto& y : r.observers)
+            f.optimum_spread_deg =
+                std::max(f.optimum_spread_deg, std::hypot(x.light_return.best.cut.crown_angle - y.light_return.best.cut.crown_angle,
+                                                          x.light_return.best.cut.pavilion_angle -
+                                                              y.light_return.best.cut.pavilion_angle));
     return f;
 }
 

@@ -181,7 +181,8 @@ void write(const Result& r, const std::string& dir) {
       << (r.main.metric.exact_polarisation ? "exact" : "natural") << " polarisation, material "
       << r.main.metric.material << "; each cut's seed derives from its parameters only"
       << (r.quick ? " (quick mode: a few cuts, few rays: mechanics only, not results)" : "") << ". "
-      << fmt(r.seconds, 3) << " s.\n\n"
+      << fmt(r.seconds, 3) << " s (" << fmt(r.observer_seconds, 3)
+      << " s of them for the observer maps, the detector grids and the renders).\n\n"
       << "## Grids\n\n"
       << "- Crown × pavilion map, " << r.main.grid.size() << " cuts (" << r.impossible
       << " impossible), the other parameters GIA's default: `" << command_of(r.main, "gem_cuts_sweep.csv") << "`\n"
@@ -206,6 +207,8 @@ void write(const Result& r, const std::string& dir) {
           << fmt(o.tolkowsky.error, 2) << " | " << num(o.d_crown) << " | " << num(o.d_pavilion) << " | "
           << fmt(o.sigmas, 3) << " |\n";
     }
+    s << "\n";
+    for (const auto& o : r.optima) s << "- " << optimum_sentence(o, r.main.grid) << "\n";
     s << "\nThe five best cuts per metric: `gem_cuts_best.csv`.\n\n";
     for (const auto& o : r.optima) {
         s << "- " << o.metric << ":";
@@ -222,6 +225,7 @@ void write(const Result& r, const std::string& dir) {
     for (const auto& x : r.sensitivity)
         s << "| " << x.metric << " | " << num(x.min) << " | " << num(x.max) << " | " << num(x.max - x.min) << " | "
           << fmt(x.mean_error, 2) << " | " << num(x.crown_pavilion_spread) << " |\n";
+    write_observers(r, dir, s);
     s << "\nCSV columns: docs/gem-metrics.md, \"Sweep\". `gnuplot gem_cuts_METRIC.gp` redraws a map from "
          "`gem_cuts_map.dat`.\n";
     write_text_atomic(dir + "/summary.md", s.str());

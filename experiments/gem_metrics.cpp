@@ -10,8 +10,10 @@
 #include <Eigen/Geometry>
 
 #include <refract/core/random.h>
+#include <refract/experiments/gem_detectors.h>
 #include <refract/experiments/gem_observation.h>
 #include <refract/experiments/gem_observer.h>
+#include <refract/geometry/error.h>
 
 namespace refract::gem_metrics {
 
@@ -112,12 +114,27 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     const double cos_head = head_cosine(observer);
     m.observer = observer.name;
     Mean lr, leak;
+    Detectors detectors(gem);
+    // The further face-up models on the same rays.
+    std::vector<double> cos_also;
+    for (const std::string& name : o.also_observers) {
+        const Observer& x = find_observer(name);
+        if (x.tilts_deg.size() != 1)
+            throw InputError("also_observers: '" + name + "' tilts the stone; only face-up models can share the rays");
+        cos_also.push_back(head_cosine(x));
+    }
+    const size_t NA = cos_also.size();
+    std::vector<Mean> lr_also(NA);
+    std::vector<Detectors> det_also(NA, Detectors(gem));
+    std::vector<double> ret_also(NA), head_also(NA);
     std::vector<double> by_kind(t.kinds().size(), 0.0);
     for (int i = 0; i < N; ++i) {
         const int band = t.band_by_luminance(golden(i));
         const EyeSample eye = eye_sample(gem, o.seed, 1, i, o.viewer_cone_deg, o.frame);
         const auto tr = t.trace(eye.ray, band, exits);
-        double returned = 0, pav = 0;
+        double returned = 0, pav = 0, girdle = 0, head = 0;
+        std::fill(ret_also.begin(), ret_also.end(), 0.0);
+        std::fill(head_also.begin(), head_also.end(), 0.0);
         for (const auto& e : exits) {
             if (e.kind < 0) {
                 m.balance.missed += e.weight;
@@ -134,8 +151,16 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
                 case Region::Crown:
                     m.balance.crown += e.weight;
                     returned += e.weight * observer_radiance(e.dir, kUp, eye.viewer, cos_head);
+                    head += e.dir.dot(kUp) > 0.0 && e.dir.dot(eye.viewer) >= cos_head ? e.weight : 0.0;
+                    for (size_t j = 0; j < NA; ++j) {
+                        ret_also[j] += e.weight * observer_radiance(e.dir, kUp, eye.viewer, cos_also[j]);
+                        head_also[j] += e.dir.dot(kUp) > 0.0 && e.dir.dot(eye.viewer) >= cos_also[j] ? e.weight : 0.0;
+                    }
                     break;
-                case Region::Girdle: m.balance.girdle += e.weight; break;
+                case Region::Girdle:
+                    m.balance.girdle += e.weight;
+                    girdle += e.weight;
+                    break;
                 case Region::Pavilion:
                     m.balance.pavilion += e.weight;
                     pav += e.weight;
@@ -143,6 +168,11 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
             }
         }
         m.balance.lost += tr.lost;
+        detectors.add(eye.ray, head, girdle);  // face-up (gem_detectors.h)
+        for (size_t j = 0; j < NA; ++j) {
+            lr_also[j].add(ret_also[j]);
+            det_also[j].add(eye.ray, head_also[j], girdle);
+        }
         // The observer's further tilts of the stone (gem_observer.h): the same light return
         // from an eye sample of its own per tilt, the lights and the eye fixed in the world.
         for (size_t k = 1; k < observer.tilts_deg.size(); ++k) {
@@ -161,8 +191,37 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
         lr.add(returned / static_cast<double>(observer.tilts_deg.size()));
         leak.add(pav);
     }
+    // The nail-head's central zone: eye rays of its own (stream 4), a quarter as many as the
+    // light return's, each viewer drawn as theirs, face-up (gem_detectors.h).
+    if (detectors.has_table())
+        for (int i = 0; i < std::max(4, N / 4); ++i) {
+            Rng rng(o.seed, 4, static_cast<std::uint64_t>(i));
+            Vec3 v(0, 0, 1);
+            if (o.viewer_cone_deg > 0) {
+                const double c = 1 - rng.uniform() * (1 - std::cos(o.viewer_cone_deg * M_PI / 180)),
+                             phi = 2 * M_PI * rng.uniform();
+                const double sn = std::sqrt(std::max(0.0, 1 - c * c));
+                v = Vec3(sn * std::cos(phi), sn * std::sin(phi), c);
+            }
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            t.trace(detectors.central_ray(v, u1, u2, 4.0 * o.frame), t.band_by_luminance(golden(i)), exits);
+            double head = 0;
+            std::fill(head_also.begin(), head_also.end(), 0.0);
+            for (const auto& e : exits) {
+                if (e.kind < 0 || t.kind_regions()[static_cast<size_t>(e.kind)] != Region::Crown || e.dir.dot(kUp) <= 0.0)
+                    continue;
+                head += e.dir.dot(v) >= cos_head ? e.weight : 0.0;
+                for (size_t j = 0; j < NA; ++j) head_also[j] += e.dir.dot(v) >= cos_also[j] ? e.weight : 0.0;
+            }
+            detectors.add_centre(head);
+            for (size_t j = 0; j < NA; ++j) det_also[j].add_centre(head_also[j]);
+        }
     m.light_return = lr.metric();
     m.leakage = leak.metric();
+    m.nail_head = detectors.nail_head();
+    m.fish_eye = detectors.fish_eye();
+    for (size_t j = 0; j < NA; ++j)
+        m.also.push_back({o.also_observers[j], lr_also[j].metric(), det_also[j].nail_head()});
     for (double* v : {&m.balance.crown, &m.balance.girdle, &m.balance.pavilion, &m.balance.lost, &m.balance.missed,
                       &m.aset.red, &m.aset.green, &m.aset.blue, &m.aset.white})
         *v /= N;

@@ -42,6 +42,10 @@ struct MetricOptions {
     // The observer and lighting model of the light return (experiments/gem_observer.h):
     // "aset" (the default), "sasian", "hemisphere", "tilt".
     std::string observer = "aset";
+    // Further face-up observer models (no tilts) whose light return and nail-head are
+    // measured on the same eye rays, into GemMetrics::also (a study of the models costs no
+    // further tracing; experiments/gem_cuts.h).
+    std::vector<std::string> also_observers;
 };
 
 // A measured value and its standard error (one sigma, from the ray statistics).
@@ -55,6 +59,11 @@ struct GemMetrics {
     Metric fire;           // dispersed coloured light return
     Metric leakage;        // light lost through the pavilion
     Metric scintillation;  // pattern change under small tilts
+    // The face-up detectors (experiments/gem_detectors.h), from the light-return eye rays:
+    // nail-head (the table's centre dark under the observer's head) and fish-eye (the
+    // share of the table's light leaving through the girdle).
+    Metric nail_head;
+    Metric fish_eye;
     // Leakage per facet kind, facet_kind() names: always "girdle", "lower half",
     // "pavilion main", "culet" in this order (0 where the cut has none); `leakage` sums the
     // last three (the pavilion), the girdle is listed apart.
@@ -79,6 +88,12 @@ struct GemMetrics {
     std::vector<std::pair<double, double>> fire_spectrum;
     int light_return_rays = 0, fire_pixels = 0, scintillation_pixels = 0;  // as traced
     std::string observer;  // MetricOptions::observer the light return was measured under
+    // MetricOptions::also_observers in order: the light return and nail-head under each.
+    struct UnderObserver {
+        std::string observer;
+        Metric light_return, nail_head;
+    };
+    std::vector<UnderObserver> also;
 };
 
 // Throws InputError (one line naming the option, its value and the allowed range) for
@@ -121,6 +136,7 @@ struct Fields<gem_metrics::GemMetrics> {
         using G = gem_metrics::GemMetrics;
         return std::make_tuple(field("light_return", &G::light_return), field("fire", &G::fire),
                                field("leakage", &G::leakage), field("scintillation", &G::scintillation),
+                               field("nail_head", &G::nail_head), field("fish_eye", &G::fish_eye),
                                field("leakage_by_kind", &G::leakage_by_kind), field("balance", &G::balance),
                                field("aset", &G::aset), field("rays", &G::light_return_rays),
                                field("fire_pixels", &G::fire_pixels), field("scintillation_pixels", &G::scintillation_pixels),

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
 #include <refract/core/ray_tree.h>
 #include <refract/core/scene.h>
 #include <refract/core/spectrum/cie.h>
@@ -297,7 +299,8 @@ Image viewer_environment(const std::string& view, int width) {
     return img;
 }
 
-Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options) {
+Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options,
+                  double tilt_deg) {
     check_view(view);
     if (size < 1 || samples < 1) throw InputError("gem metrics: image size and samples must be positive");
     MetricOptions o = options;
@@ -307,6 +310,9 @@ Image render_view(const Gem& gem, const std::string& view, int size, int samples
     const Vec3 up = below ? Vec3(0, 0, -1) : Vec3(0, 0, 1);
     const int band = t.middle_band();
     const double half = 1.05 * o.frame, far = 4.0 * o.frame;
+    const bool tilted = tilt_deg != 0.0;
+    const Eigen::Matrix3d back = Eigen::AngleAxisd(-tilt_deg * kDeg, Vec3::UnitX()).toRotationMatrix();
+    const Vec3 viewer = back * up;
     Image img(size, size);
     std::vector<GemTracer::Exit> exits;
     for (int j = 0; j < size; ++j)
@@ -318,13 +324,15 @@ Image render_view(const Gem& gem, const std::string& view, int size, int samples
                     const double y = half - 2 * half * (j + (sy + 0.5) / samples) / size;
                     // From below, the image's right is the stone's −x (mirrored, as drawn).
                     const Ray r{below ? Vec3(-x, y, -far) : Vec3(x, y, far), -up};
-                    t.trace(r, band, exits);
+                    // The stone tilted about the image's horizontal axis, the viewer fixed: the
+                    // ray and the viewer's direction turned back into the stone's frame.
+                    t.trace(tilted ? Ray{back * r.origin, back * r.dir} : r, band, exits);
                     for (const auto& e : exits) {
                         if (e.kind < 0) {  // missed the stone: the viewer's dark background
                             c += e.weight * Vec3(0.08, 0.08, 0.1);
                             continue;
                         }
-                        c += e.weight * view_colour(view, e.dir, up);
+                        c += e.weight * view_colour(view, e.dir, tilted ? viewer : up);
                     }
                 }
             img.set(i, j, c / (samples * samples));

@@ -147,7 +147,10 @@ std::vector<std::string> view_names();
 // The colour a view's viewer sends along direction d (unit, leaving the stone), `up`
 // pointing from the stone to the viewer: the functions above by name.
 Vec3 view_colour(const std::string& view, const Vec3& d, const Vec3& up);
-Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options);
+// tilt_deg: the stone tilted by that angle about the image's horizontal axis, the viewer
+// and its colours fixed (a tilt series; 0: face-up, as always).
+Image render_view(const Gem& gem, const std::string& view, int size, int samples, const MetricOptions& options,
+                  double tilt_deg = 0.0);
 
 // A view's viewer as an equirectangular environment map (docs/scene-format.md, width ×
 // width/2, row 0 at +y) for scene files with the scene's +y as the stone's axis: the
