@@ -26,7 +26,7 @@
 #include <refract/validation/pov_export.h>
 #include <refract/validation/povray_runner.h>
 
-namespace {
+namespace bench_command {
 
 struct Args {
     int width = 640, height = 480, threads = 0, samples = 31;
@@ -362,4 +362,5 @@ refract::cli::Registrar reg{75, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace bench_command
+using namespace bench_command;

@@ -19,7 +19,7 @@
 
 namespace refract::cli::bench {
 
-namespace {
+namespace bench_geometry_command {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -72,7 +72,8 @@ void table_row(const std::string& name, const std::vector<double>& wall, const s
                 rays / minimum(wall) / 1e6, rays / median(cpu) / 1e6, hits);
 }
 
-}  // namespace
+}  // namespace bench_geometry_command
+using namespace bench_geometry_command;
 
 void kernels(int rounds) {
     Gem gem = build_brilliant(BrilliantCut{});
@@ -104,7 +105,7 @@ void kernels(int rounds) {
     facet_local(solid, rounds);
 }
 
-namespace {
+namespace bench_geometry_command {
 
 // A ray leaving hit `from` on a facet of the gem, with a guess of the facet it leaves through.
 struct FacetQuery {
@@ -112,7 +113,7 @@ struct FacetQuery {
     int from, guess;
 };
 
-}  // namespace
+}  // namespace bench_geometry_command
 
 // Rays as a render of the gem makes them: each leaving the hit of an outside ray on a
 // facet, half inward (the guess: the leaving facet of a ray 0.3° away, as the neighbouring

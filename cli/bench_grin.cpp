@@ -16,7 +16,7 @@
 
 namespace refract::cli::bench {
 
-namespace {
+namespace bench_grin_command {
 using namespace refract::grin;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kLambda = 0.5876;
@@ -41,13 +41,6 @@ std::vector<Case> profiles() {
             {"tabulated radial (201 radii)", tabulated_radial(Vec3::Zero(), r, n, "bench")}};
 }
 
-// CPU time of this thread: the figures per core, whatever else the machine runs.
-double thread_cpu_seconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 // Points in the unit ball from a fixed linear congruential sequence.
 std::vector<Vec3> points(int count) {
     std::vector<Vec3> p;
@@ -62,7 +55,8 @@ std::vector<Vec3> points(int count) {
     }
     return p;
 }
-}  // namespace
+}  // namespace bench_grin_command
+using namespace bench_grin_command;
 
 void grin(int rounds) {
     std::printf("GRIN index-and-gradient evaluations, one thread per second of this thread's CPU time (median of %d rounds of 4 M calls)\n", rounds);

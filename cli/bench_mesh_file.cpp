@@ -19,7 +19,7 @@
 
 namespace refract::cli::bench {
 
-namespace {
+namespace bench_mesh_file_command {
 
 namespace fs = std::filesystem;
 
@@ -116,7 +116,8 @@ void measure(const fs::path& file, const fs::path& dir) {
                 (after.current - before.current) / n, (after.peak - before.current) / n);
 }
 
-}  // namespace
+}  // namespace bench_mesh_file_command
+using namespace bench_mesh_file_command;
 
 void mesh_file() {
     const TriangleMesh sphere = icosphere(8);

@@ -26,7 +26,7 @@ namespace refract::cli::bench {
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace bench_rtiow_command {
 
 // The mean of each channel over a grid of regions (the images are noisy at 100 spp: the
 // same work shows as equal region means, not equal pixels).
@@ -50,7 +50,8 @@ std::string self_executable() {
     return p.string();
 }
 
-}  // namespace
+}  // namespace bench_rtiow_command
+using namespace bench_rtiow_command;
 
 void rtiow(const std::string& book, int rounds) {
     if (::access(book.c_str(), X_OK) != 0) throw InputError("bench: --rtiow '" + book + "' is not an executable file");

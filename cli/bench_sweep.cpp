@@ -22,7 +22,7 @@
 
 namespace refract::cli::bench {
 
-namespace {
+namespace bench_sweep_command {
 
 namespace sw = experiments::gem_sweep;
 using experiments::fmt;
@@ -40,7 +40,8 @@ std::string slurp(const std::string& p) {
     return s.str();
 }
 
-}  // namespace
+}  // namespace bench_sweep_command
+using namespace bench_sweep_command;
 
 void sweep(int threads, int rays) {
     sw::Sweep full = experiments::gem_cuts::full_sweep();

@@ -26,6 +26,13 @@ inline double process_cpu_seconds() {
     return s;
 }
 
+// CPU time of this thread: the figures per core, whatever else the machine runs.
+inline double thread_cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 inline double wall_seconds() {
     timespec t{};
     clock_gettime(CLOCK_MONOTONIC, &t);

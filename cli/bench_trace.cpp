@@ -18,13 +18,7 @@
 
 namespace refract::cli::bench {
 
-namespace {
-
-double thread_cpu_seconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+namespace bench_trace_command {
 
 // Wall and thread-CPU seconds of f(), `rounds` times.
 template <class F>
@@ -72,7 +66,8 @@ TraceRays diamond_rays(const TraceSession& session, int step) {
     return r;
 }
 
-}  // namespace
+}  // namespace bench_trace_command
+using namespace bench_trace_command;
 
 void trace(int rounds, bool quick) {
     namespace oh = experiments::ohtsuka1998;

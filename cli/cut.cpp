@@ -11,7 +11,7 @@
 #include <refract/geometry/gem/brilliant.h>
 #include <refract/geometry/gem/gem_io.h>
 
-namespace {
+namespace cut_command {
 
 struct CutArgs {
     std::string preset = "gia-default";
@@ -121,4 +121,5 @@ refract::cli::Registrar reg{40, [](CLI::App& app) {
     sub->callback([a, sub] { run(*a, *sub); });
 }};
 
-}  // namespace
+}  // namespace cut_command
+using namespace cut_command;

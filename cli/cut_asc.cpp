@@ -16,7 +16,7 @@
 #include <refract/geometry/gem/gem_io.h>
 #include <refract/geometry/gem/gemcad.h>
 
-namespace {
+namespace cut_asc_command {
 
 struct AscArgs {
     std::string design, output;
@@ -80,4 +80,5 @@ refract::cli::Registrar reg{41, [](CLI::App& app) {
     sub->callback([a] { run(*a); });
 }};
 
-}  // namespace
+}  // namespace cut_asc_command
+using namespace cut_asc_command;

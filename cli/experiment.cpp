@@ -10,7 +10,7 @@
 #include <refract/experiments/plot.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace experiment_command {
 
 struct Args {
     std::string name, out;
@@ -52,4 +52,5 @@ refract::cli::Registrar reg{20, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace experiment_command
+using namespace experiment_command;

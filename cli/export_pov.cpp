@@ -5,7 +5,7 @@
 #include <refract/core/scene_json.h>
 #include <refract/validation/pov_export.h>
 
-namespace {
+namespace export_pov_command {
 
 struct ExportArgs {
     std::string scene, output;
@@ -23,4 +23,5 @@ refract::cli::Registrar reg{50, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace export_pov_command
+using namespace export_pov_command;

@@ -13,7 +13,7 @@
 #include <refract/experiments/plot.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace farfield_command {
 
 struct FarFieldArgs {
     std::string scene, output, binning = "sphere";
@@ -106,4 +106,5 @@ refract::cli::Registrar reg{17, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace farfield_command
+using namespace farfield_command;

@@ -13,7 +13,7 @@
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace gltf_command {
 
 namespace fs = std::filesystem;
 
@@ -81,4 +81,5 @@ refract::cli::Registrar reg{51, [](CLI::App& app) {
     ex->callback([e] { run_export(*e); });
 }};
 
-}  // namespace
+}  // namespace gltf_command
+using namespace gltf_command;

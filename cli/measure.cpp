@@ -17,7 +17,7 @@
 #include <refract/validation/files.h>
 #include <refract/validation/measure.h>
 
-namespace {
+namespace measure_command {
 
 struct MeasureArgs {
     std::string image, mask, output;
@@ -149,4 +149,5 @@ refract::cli::Registrar reg{55, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace measure_command
+using namespace measure_command;

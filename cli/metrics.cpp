@@ -15,7 +15,7 @@
 #include <refract/experiments/design_metrics.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace metrics_command {
 
 namespace dm = refract::experiments::design_metrics;
 
@@ -87,4 +87,5 @@ refract::cli::Registrar reg{36, [](CLI::App& app) {
     sub->callback([a] { run(*a); });
 }};
 
-}  // namespace
+}  // namespace metrics_command
+using namespace metrics_command;

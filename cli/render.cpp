@@ -13,7 +13,7 @@
 #include <refract/core/scene_json.h>
 #include <refract/core/tracer.h>
 
-namespace {
+namespace render_command {
 
 struct RenderArgs {
     std::string scene, output;
@@ -137,4 +137,5 @@ refract::cli::Registrar reg{10, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace render_command
+using namespace render_command;

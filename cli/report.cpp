@@ -8,7 +8,7 @@
 #include <refract/experiments/report_site.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace report_command {
 
 refract::cli::Registrar reg{92, [](CLI::App& app) {
     auto out = std::make_shared<std::string>();
@@ -30,4 +30,5 @@ refract::cli::Registrar reg{92, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace report_command
+using namespace report_command;

@@ -21,7 +21,7 @@
 #include <refract/validation/povray_runner.h>
 #include <refract/validation/suite.h>
 
-namespace {
+namespace reproduce_command {
 namespace fs = std::filesystem;
 namespace ex = refract::experiments;
 
@@ -117,4 +117,5 @@ refract::cli::Registrar reg{90, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace reproduce_command
+using namespace reproduce_command;

@@ -33,7 +33,7 @@ std::optional<std::string> nearest_word(const std::string& word, const std::vect
     return best;
 }
 
-namespace {
+namespace suggest_command {
 
 std::vector<std::string> subcommand_names(CLI::App& app) {
     std::vector<std::string> names;
@@ -47,7 +47,8 @@ void add_long_names(const CLI::App& app, std::vector<std::string>& names) {
         for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
 }
 
-}  // namespace
+}  // namespace suggest_command
+using namespace suggest_command;
 
 std::optional<std::string> suggestion(CLI::App& app, int argc, char** argv) {
     CLI::App* level = &app;

@@ -15,7 +15,7 @@
 #include <refract/core/spectrum/dispersion.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace sweep_command {
 
 namespace sw = refract::experiments::gem_sweep;
 
@@ -202,4 +202,5 @@ refract::cli::Registrar reg{35, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace sweep_command
+using namespace sweep_command;

@@ -12,7 +12,7 @@
 #include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 
-namespace {
+namespace sweep_design_command {
 
 namespace dm = refract::experiments::design_metrics;
 
@@ -54,4 +54,5 @@ refract::cli::Registrar reg{37, [](CLI::App& app) {
     sub->callback([a] { run(*a); });
 }};
 
-}  // namespace
+}  // namespace sweep_design_command
+using namespace sweep_design_command;

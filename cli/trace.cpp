@@ -12,7 +12,7 @@
 #include <refract/geometry/error.h>
 #include <refract/validation/files.h>
 
-namespace {
+namespace trace_command {
 
 struct TraceArgs {
     std::string scene, output;
@@ -114,4 +114,5 @@ refract::cli::Registrar reg{15, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace trace_command
+using namespace trace_command;

@@ -13,7 +13,7 @@
 #include <refract/validation/random_suite.h>
 #include <refract/validation/suite.h>
 
-namespace {
+namespace validate_command {
 
 struct ValidateArgs {
     std::vector<std::string> cases;
@@ -157,4 +157,5 @@ refract::cli::Registrar reg{60, [](CLI::App& app) {
     });
 }};
 
-}  // namespace
+}  // namespace validate_command
+using namespace validate_command;

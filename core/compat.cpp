@@ -164,13 +164,10 @@ void CompatRules::validate(const Scene& scene) const {
     if (polarisation_model(scene) == PolarisationModel::Exact)
         throw InputError(f + ": /render/polarisation: \"exact\" has no POV-Ray counterpart (compat \"povray\" is natural light)");
     for (const Material& m : scene.materials)
-        if (m.is<material::Uniaxial>())
-            throw InputError(f + ": material '" + clip_echo(m.name) +
-                             "': a uniaxial crystal needs the physical mode and the fresnel-tree integrator (or the "
-                             "spectral eye pass): its rays carry their o/e wave along the ray tree");
-        else if (m.is<material::Grin>())
-            throw InputError(f + ": material '" + clip_echo(m.name) +
-                             "': a gradient-index medium needs the physical mode (POV-Ray has no curved rays)");
+        if (const char* lacks = povray_lacks(m))
+            throw InputError(f + ": material '" + clip_echo(m.name) + "': a \"" +
+                             std::visit([](const auto& k) { return std::string(std::decay_t<decltype(k)>::kType); }, m.kind) +
+                             "\" material needs the physical mode (" + lacks + ")");
 }
 
 }  // namespace refract

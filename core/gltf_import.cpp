@@ -144,7 +144,7 @@ Affine node_matrix(const Doc& d, const json& n, const std::string& where) {
     return M;
 }
 
-json vec(const Vec3& v) { return json::array({v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}); }
+json json_vec3(const Vec3& v) { return json::array({v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}); }
 
 // Texture references, anywhere in a material or its extensions.
 void warn_textures(const Doc& d, const json& o, const std::string& where, const std::string& item) {
@@ -208,7 +208,7 @@ json material_json(const Doc& d, const json& m, const std::string& where) {
         } else {
             d.warn(item, "no KHR_materials_volume (thin-walled in glTF): imported as a solid dielectric");
         }
-        if (colour != Vec3(1, 1, 1)) out["filter"] = vec(colour);
+        if (colour != Vec3(1, 1, 1)) out["filter"] = json_vec3(colour);
         if (base[3] != 1) d.warn(item, "baseColorFactor alpha not honoured");
         return out;
     }
@@ -216,8 +216,8 @@ json material_json(const Doc& d, const json& m, const std::string& where) {
         d.warn(item, "alpha (alphaMode, baseColorFactor's alpha) not honoured: opaque");
     if (metallic != 0 && metallic != 1)
         d.warn(item, "metallicFactor " + format_value(metallic) + " taken as " + (metallic >= 0.5 ? "1" : "0"));
-    if (metallic >= 0.5) return {{"type", "metal"}, {"color", vec(colour)}, {"fuzz", std::fmin(std::fmax(roughness, 0.0), 1.0)}};
-    return {{"type", "diffuse"}, {"color", vec(colour)}};
+    if (metallic >= 0.5) return {{"type", "metal"}, {"color", json_vec3(colour)}, {"fuzz", std::fmin(std::fmax(roughness, 0.0), 1.0)}};
+    return {{"type", "diffuse"}, {"color", json_vec3(colour)}};
 }
 
 struct Importer {
@@ -279,7 +279,7 @@ struct Importer {
         const Vec3 loc = G.block<3, 1>(0, 3), back = G.block<3, 1>(0, 2), up = G.block<3, 1>(0, 1);
         if (!(back.norm() > 0) || !(up.norm() > 0) || !(back.cross(up).norm() > 0))
             d.fail(d.item("/nodes", n), "the camera's transform is singular");
-        json out = {{"location", vec(loc)}, {"look_at", vec(loc - back.normalized())}, {"sky", vec(up.normalized())}};
+        json out = {{"location", json_vec3(loc)}, {"look_at", json_vec3(loc - back.normalized())}, {"sky", json_vec3(up.normalized())}};
         const std::string type = c.contains("type") && c["type"].is_string() ? c["type"].get<std::string>() : "";
         double aspect = 0;
         if (type == "perspective") {
@@ -328,16 +328,16 @@ struct Importer {
         const std::string type = l.contains("type") && l["type"].is_string() ? l["type"].get<std::string>() : "";
         const std::string li = d.item(where, l);
         if (l.contains("range")) d.warn(li, "range not honoured (refract's point lights do not fall off)");
-        json out = {{"color", vec(Vec3(c[0], c[1], c[2]) * intensity)}};
+        json out = {{"color", json_vec3(Vec3(c[0], c[1], c[2]) * intensity)}};
         if (type == "directional") {
             const Vec3 back = G.block<3, 1>(0, 2);
             if (!(back.norm() > 0)) d.fail(item, "the light's transform is singular");
             out["type"] = "directional";
-            out["direction"] = vec(-back.normalized());
+            out["direction"] = json_vec3(-back.normalized());
         } else if (type == "point" || type == "spot") {
             if (type == "spot") d.warn(li, "spot cone not honoured: a point light");
             out["type"] = "point";
-            out["position"] = vec(G.block<3, 1>(0, 3));
+            out["position"] = json_vec3(G.block<3, 1>(0, 3));
         } else {
             d.fail(where + "/type", "must be \"point\", \"spot\" or \"directional\"");
         }

@@ -79,6 +79,9 @@ inline bool in_packets(const Material& m) {
 inline bool carries_stokes(const Material& m) {
     return std::visit([](const auto& k) { return carries_stokes(k); }, m.kind);
 }
+inline const char* povray_lacks(const Material& m) {
+    return std::visit([](const auto& k) { return povray_lacks(k); }, m.kind);
+}
 inline NodeRecord describe(const Material& m, const Interaction& in, const SurfaceHit& h, const Ray& ray,
                            double band_ior) {
     return std::visit([&](const auto& k) { return describe(k, in, h, ray, band_ior); }, m.kind);

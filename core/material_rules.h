@@ -23,6 +23,8 @@
 //   bool in_packets(const K&)                       rays meeting it can ride in packets
 //   bool carries_stokes(const K&)                   exact polarisation can pass it (the
 //        physical mode's default model needs every material to say so)
+//   const char* povray_lacks(const K&)              what POV-Ray lacks to render it (null: it
+//        has a counterpart); the compatibility policy refuses such a kind (core/compat.cpp)
 //   NodeRecord describe(const K&, const Interaction&, const SurfaceHit&, const Ray&,
 //        double band_ior)                           what `trace` records of its node
 //   void validate(const K&, const MaterialCheck&)   settings it cannot honour (InputError)
@@ -112,6 +114,7 @@ REFRACT_MATERIAL_RULE(dispersive, bool)
 REFRACT_MATERIAL_RULE(absorption, const spectrum::Absorption*)
 REFRACT_MATERIAL_RULE(in_packets, bool)
 REFRACT_MATERIAL_RULE(carries_stokes, bool)
+REFRACT_MATERIAL_RULE(povray_lacks, const char*)
 #undef REFRACT_MATERIAL_RULE
 template <class K, class = void>
 struct has_band_index : std::false_type {};
@@ -140,7 +143,7 @@ template <class K>
 constexpr bool is_complete_kind = has_interact<K>::value && has_sample<K>::value && has_leaf_light<K>::value &&
                                   has_stochastic_role<K>::value && has_shadow_filter<K>::value &&
                                   has_casts_shadow<K>::value && has_dispersive<K>::value && has_band_index<K>::value && has_absorption<K>::value &&
-                                  has_in_packets<K>::value && has_carries_stokes<K>::value && has_describe<K>::value && has_validate<K>::value &&
+                                  has_in_packets<K>::value && has_carries_stokes<K>::value && has_povray_lacks<K>::value && has_describe<K>::value && has_validate<K>::value &&
                                   has_reader<K>::value;
 
 // One line per missing rule, naming it.
@@ -158,6 +161,7 @@ constexpr bool check_kind() {
     static_assert(has_absorption<K>::value, "material kind lacks absorption(kind)");
     static_assert(has_in_packets<K>::value, "material kind lacks in_packets(kind)");
     static_assert(has_carries_stokes<K>::value, "material kind lacks carries_stokes(kind)");
+    static_assert(has_povray_lacks<K>::value, "material kind lacks povray_lacks(kind)");
     static_assert(has_describe<K>::value, "material kind lacks describe(kind, interaction, hit, ray, band_ior)");
     static_assert(has_validate<K>::value, "material kind lacks validate(kind, check)");
     return true;

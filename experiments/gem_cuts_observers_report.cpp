@@ -16,7 +16,7 @@ namespace sw = gem_sweep;
 
 namespace {
 
-std::string num(double v) { return std::isnan(v) ? std::string("none") : fmt(v, 4); }
+std::string num_or_none(double v) { return std::isnan(v) ? std::string("none") : fmt(v, 4); }
 
 // The crown × pavilion rows as gnuplot grid blocks: crown pavilion then one column per
 // observer from `cell` (NaN for an impossible cut).
@@ -107,15 +107,15 @@ std::string edge_text(const Edge& e, const sw::Grid& grid) {
     auto add = [&](bool on, const std::string& what) {
         if (on) s += (s.empty() ? "" : " and ") + what;
     };
-    add(e.crown_low, "crown " + num(c.value(0)) + "°, the grid's shallowest");
-    add(e.crown_high, "crown " + num(c.value(c.count - 1)) + "°, the grid's steepest");
-    add(e.pavilion_low, "pavilion " + num(p.value(0)) + "°, the grid's shallowest");
-    add(e.pavilion_high, "pavilion " + num(p.value(p.count - 1)) + "°, the grid's steepest");
+    add(e.crown_low, "crown " + num_or_none(c.value(0)) + "°, the grid's shallowest");
+    add(e.crown_high, "crown " + num_or_none(c.value(c.count - 1)) + "°, the grid's steepest");
+    add(e.pavilion_low, "pavilion " + num_or_none(p.value(0)) + "°, the grid's shallowest");
+    add(e.pavilion_high, "pavilion " + num_or_none(p.value(p.count - 1)) + "°, the grid's steepest");
     return s;
 }
 
 std::string optimum_sentence(const Optimum& o, const sw::Grid& grid) {
-    const std::string where = "crown " + num(o.best.cut.crown_angle) + "°, pavilion " + num(o.best.cut.pavilion_angle) + "°";
+    const std::string where = "crown " + num_or_none(o.best.cut.crown_angle) + "°, pavilion " + num_or_none(o.best.cut.pavilion_angle) + "°";
     if (o.edge.any())
         return "Under " + o.observer + " the best " + o.metric + " (" + where + ") lies on the grid's edge (" +
                edge_text(o.edge, grid) + "): the optimum may lie outside the grid, and its distance from Tolkowsky's is "
@@ -176,9 +176,9 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
     for (const auto& o : r.observers) {
         const Optimum& p = o.light_return;
         const auto& b = p.best.metrics.light_return;
-        s << "| " << o.observer << " | " << num(p.best.cut.crown_angle) << " | " << num(p.best.cut.pavilion_angle) << " | "
-          << num(b.value) << " ± " << fmt(b.error, 2) << " | " << num(p.tolkowsky.value) << " ± " << fmt(p.tolkowsky.error, 2)
-          << " | " << num(p.d_crown) << " | " << num(p.d_pavilion) << " | " << fmt(p.sigmas, 3) << " | "
+        s << "| " << o.observer << " | " << num_or_none(p.best.cut.crown_angle) << " | " << num_or_none(p.best.cut.pavilion_angle) << " | "
+          << num_or_none(b.value) << " ± " << fmt(b.error, 2) << " | " << num_or_none(p.tolkowsky.value) << " ± " << fmt(p.tolkowsky.error, 2)
+          << " | " << num_or_none(p.d_crown) << " | " << num_or_none(p.d_pavilion) << " | " << fmt(p.sigmas, 3) << " | "
           << (p.edge.any() ? edge_text(p.edge, r.main.grid) : std::string("no")) << " |\n";
     }
     s << "\n";
@@ -201,9 +201,9 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
     for (size_t k = 0; k <= r.observers.size(); ++k) s << "---:|";
     s << "\n";
     for (size_t c = 0; c < r.nail_head_onset.front().size(); ++c) {
-        s << "| " << num(r.nail_head_onset.front()[c].crown) << " |";
-        for (size_t k = 0; k < r.observers.size(); ++k) s << " " << num(r.nail_head_onset[k][c].pavilion) << " |";
-        s << " " << num(r.fish_eye_limit.front()[c].pavilion) << " |\n";
+        s << "| " << num_or_none(r.nail_head_onset.front()[c].crown) << " |";
+        for (size_t k = 0; k < r.observers.size(); ++k) s << " " << num_or_none(r.nail_head_onset[k][c].pavilion) << " |";
+        s << " " << num_or_none(r.fish_eye_limit.front()[c].pavilion) << " |\n";
     }
     s << "\n(\"none\": the detector does not fire at the grid's steepest, or shallowest, pavilion. The fish-eye does "
          "not depend on the observer: the same eye rays, the same exits.) Tolkowsky's own cut has a knife-edge girdle "
@@ -229,7 +229,7 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
             for (const auto& [name, v] : nails)
                 if (gem_metrics::shows_nail_head(v)) firing += (firing.empty() ? "" : ", ") + name;
             const bool fish = gem_metrics::shows_fish_eye(m.fish_eye);
-            s << (i == 0 ? "" : i + 1 == r.renders.size() ? " and " : ", ") << num(c.row.cut.pavilion_angle) << "° ("
+            s << (i == 0 ? "" : i + 1 == r.renders.size() ? " and " : ", ") << num_or_none(c.row.cut.pavilion_angle) << "° ("
               << (firing.empty() ? std::string("no nail-head under any observer")
                                  : "a nail-head under " + firing)
               << (fish ? ", a fish-eye" : ", no fish-eye") << ": nail-head";

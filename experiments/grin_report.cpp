@@ -11,7 +11,7 @@ namespace refract::experiments::grin_media {
 
 namespace {
 
-std::string g(double v, int digits = 4) { return std::isfinite(v) ? fmt(v, digits) : std::string("—"); }
+std::string gfmt(double v, int digits = 4) { return std::isfinite(v) ? fmt(v, digits) : std::string("—"); }
 std::string cell(double v, int digits = 10) { return std::isfinite(v) ? fmt(v, digits) : std::string(); }
 
 Csv paths_csv(const std::vector<PathPoint>& p, const std::string& u, const std::string& v) {
@@ -78,8 +78,8 @@ void figures(const Result& r, const std::string& dir) {
                    "plot " + rays_plot("luneburg_paths.csv", last_ray(r.luneburg.paths), "lc rgb '#1f77b4'") + "\n");
     gnuplot_figure(dir, "fisheye",
                    "set datafile separator ','\nset size ratio -1\nset xlabel 'z / a'\nset ylabel 'x / a'\n"
-                   "set title \"Maxwell's fish-eye: rays from z = " + g(r.fisheye.r0) + " a are circles through z = " +
-                       g(r.fisheye.image) + " a\"\nset xrange [-3:3]\nset yrange [-3:3]\n"
+                   "set title \"Maxwell's fish-eye: rays from z = " + gfmt(r.fisheye.r0) + " a are circles through z = " +
+                       gfmt(r.fisheye.image) + " a\"\nset xrange [-3:3]\nset yrange [-3:3]\n"
                        "set object 1 circle at 0,0 size 1 fc rgb '#dddddd' fs solid 0.4 noborder behind\n"
                        "set label 1 'object' at " + fmt(r.fisheye.r0) + ",0 point pt 7 ps 1.2 lc rgb 'red' offset 0.5,0.5\n"
                        "set label 2 'image' at " + fmt(r.fisheye.image) + ",0 point pt 7 ps 1.2 lc rgb 'red' offset 0.5,0.5\n"
@@ -105,9 +105,9 @@ void figures(const Result& r, const std::string& dir) {
                        "\nunset multiplot\n",
                    {1100, 560, 8.0, 4.2});
     mirage_figure(dir, r.road, "mirage_road", "Inferior mirage over a hot road: rays from an eye at " +
-                                                  g(r.road.eye_height) + " m", "the surface layer");
+                                                  gfmt(r.road.eye_height) + " m", "the surface layer");
     mirage_figure(dir, r.sea, "mirage_sea", "Superior mirage over a cold sea: rays from an eye at " +
-                                                g(r.sea.eye_height) + " m", "the inversion");
+                                                gfmt(r.sea.eye_height) + " m", "the inversion");
     gnuplot_figure(dir, "sun",
                    "set datafile separator ','\nset multiplot layout 2,1 title 'The setting sun (standard atmosphere)'\n"
                    "set xlabel 'apparent altitude of the lower limb (degrees)'\nset ylabel 'vertical / horizontal diameter'\n"
@@ -166,19 +166,19 @@ std::string mirage_text(const MirageStudy& m, bool inverted, const std::string& 
         for (size_t k = 0; k < m.branches.size(); ++k) {
             const MirageBranch& b = m.branches[k];
             s << (k ? (k + 1 == m.branches.size() ? " and " : ", ") : "") << (b.inverted() ? "inverted" : "erect")
-              << " at elevations " << g(b.elevation_lo_deg) << "° to " << g(b.elevation_hi_deg) << "° (heights "
-              << g(b.height_lo) << " to " << g(b.height_hi) << " m)";
+              << " at elevations " << gfmt(b.elevation_lo_deg) << "° to " << gfmt(b.elevation_hi_deg) << "° (heights "
+              << gfmt(b.height_lo) << " to " << gfmt(b.height_hi) << " m)";
         }
         s << ". ";
     } else {
         s << "Seen " << at << ", the heights rise with the elevation at the eye: no inverted image. ";
     }
-    s << "Nothing of the object below " << g(m.lowest_seen) << " m is seen (the vanishing line; "
-      << g(m.lowest_seen_standard) << " m without the layer"
+    s << "Nothing of the object below " << gfmt(m.lowest_seen) << " m is seen (the vanishing line; "
+      << gfmt(m.lowest_seen_standard) << " m without the layer"
       << (m.lowest_seen < m.lowest_seen_standard ? ": the layer lifts the hidden part into view)."
           : m.lowest_seen > m.lowest_seen_standard ? ": the layer hides it)." : ").");
     if (std::isfinite(m.ground_onset_deg))
-        s << " Rays at elevations up to " << g(m.ground_onset_deg) << "° meet the " << ground << ".";
+        s << " Rays at elevations up to " << gfmt(m.ground_onset_deg) << "° meet the " << ground << ".";
     return s.str();
 }
 
@@ -262,79 +262,79 @@ void write(const Result& r, const std::string& dir) {
     std::ostringstream md;
     md << "# grin: gradient-index media traced by the ray equation\n\n"
        << "Every ray is integrated by `core/grin`'s `advance()` (Dormand–Prince 5(4), docs/grin.md); no renderer. "
-       << "λ = " << g(r.lambda_um * 1000, 3) << " nm unless stated. " << (r.quick ? "Quick run (fewer rays). " : "")
-       << "Total time " << g(r.seconds, 3) << " s (";
+       << "λ = " << gfmt(r.lambda_um * 1000, 3) << " nm unless stated. " << (r.quick ? "Quick run (fewer rays). " : "")
+       << "Total time " << gfmt(r.seconds, 3) << " s (";
     for (size_t k = 0; k < r.study_seconds.size(); ++k)
-        md << (k ? ", " : "") << r.study_seconds[k].first << " " << g(r.study_seconds[k].second, 2) << " s";
+        md << (k ? ", " : "") << r.study_seconds[k].first << " " << gfmt(r.study_seconds[k].second, 2) << " s";
     md << ").\n\n";
     md << "## 1. Lenses\n\n" << lenses.markdown(3) << "\n";
     md << "**Luneburg lens** (luneburg.png): " << L.rays << " parallel rays, impacts −0.95…0.95 R, tolerance "
-       << g(L.tol, 2) << ", " << g(L.mean_evaluations, 4) << " evaluations a ray. "
-       << (f.luneburg_focus ? "They meet at the antipodal surface point: spot radius " + g(L.spot_radius, 2) + " R (≤ 1e-9 R)."
-                            : "Spot radius " + g(L.spot_radius, 2) + " R: above 1e-9 R, the bundle does not meet at one point.")
+       << gfmt(L.tol, 2) << ", " << gfmt(L.mean_evaluations, 4) << " evaluations a ray. "
+       << (f.luneburg_focus ? "They meet at the antipodal surface point: spot radius " + gfmt(L.spot_radius, 2) + " R (≤ 1e-9 R)."
+                            : "Spot radius " + gfmt(L.spot_radius, 2) + " R: above 1e-9 R, the bundle does not meet at one point.")
        << "\n\n";
-    md << "**Maxwell's fish-eye** (fisheye.png): " << F.rays << " rays from a point at z = " << g(F.r0) << " a. "
-       << (f.fisheye_image ? "Every ray is a circle and meets at −a²/r₀ = " + g(F.image) + " a: image error " +
-                                 g(F.image_error, 2) + " a, largest distance of a path point from its circle " +
-                                 g(F.circle_error, 2) + " a (both ≤ 1e-8 a)."
-                           : "Image error " + g(F.image_error, 2) + " a, distance from the circles " + g(F.circle_error, 2) +
+    md << "**Maxwell's fish-eye** (fisheye.png): " << F.rays << " rays from a point at z = " << gfmt(F.r0) << " a. "
+       << (f.fisheye_image ? "Every ray is a circle and meets at −a²/r₀ = " + gfmt(F.image) + " a: image error " +
+                                 gfmt(F.image_error, 2) + " a, largest distance of a path point from its circle " +
+                                 gfmt(F.circle_error, 2) + " a (both ≤ 1e-8 a)."
+                           : "Image error " + gfmt(F.image_error, 2) + " a, distance from the circles " + gfmt(F.circle_error, 2) +
                                  " a: above 1e-8 a.")
        << "\n\n";
-    md << "**GRIN rods** (rods.png, rods.csv): a point on the axis, meridional rays at " << g(R.rows.front().angle_deg)
-       << "°…" << g(R.rows.back().angle_deg) << "°, after one pitch 2π/α = " << g(R.pitch) << ". "
-       << (f.sech_refocus ? "The hyperbolic-secant rod refocuses every ray on the point (largest height " + g(R.sech_spot, 2) +
+    md << "**GRIN rods** (rods.png, rods.csv): a point on the axis, meridional rays at " << gfmt(R.rows.front().angle_deg)
+       << "°…" << gfmt(R.rows.back().angle_deg) << "°, after one pitch 2π/α = " << gfmt(R.pitch) << ". "
+       << (f.sech_refocus ? "The hyperbolic-secant rod refocuses every ray on the point (largest height " + gfmt(R.sech_spot, 2) +
                                 "), the parabolic rod of the same paraxial pitch does not (largest height " +
-                                g(R.parabolic_spot, 3) + ": its period depends on the launch angle)."
-                          : "Largest heights after one pitch: sech rod " + g(R.sech_spot, 2) + ", parabolic rod " +
-                                g(R.parabolic_spot, 3) + ": the sech rod's refocusing is not shown at 1e-9.")
+                                gfmt(R.parabolic_spot, 3) + ": its period depends on the launch angle)."
+                          : "Largest heights after one pitch: sech rod " + gfmt(R.sech_spot, 2) + ", parabolic rod " +
+                                gfmt(R.parabolic_spot, 3) + ": the sech rod's refocusing is not shown at 1e-9.")
        << "\n\n";
-    md << "**A rod imaging a grid** (grid.png, grid.csv): a parabolic rod n₀ = " << g(G.n0) << ", √A = " << g(G.g)
-       << ", length " << g(G.length) << ", object " << g(G.object_distance) << " in front; paraxial (ABCD) image "
-       << g(G.image_distance) << " behind, magnification " << g(G.paraxial_magnification) << ". " << G.rays_per_point
-       << " rays a point through a pupil of radius " << g(G.pupil_radius) << " on the entrance face. "
-       << (f.grid_inverted_as_paraxial ? "Near the axis the measured magnification is " + g(G.axis_magnification) +
+    md << "**A rod imaging a grid** (grid.png, grid.csv): a parabolic rod n₀ = " << gfmt(G.n0) << ", √A = " << gfmt(G.g)
+       << ", length " << gfmt(G.length) << ", object " << gfmt(G.object_distance) << " in front; paraxial (ABCD) image "
+       << gfmt(G.image_distance) << " behind, magnification " << gfmt(G.paraxial_magnification) << ". " << G.rays_per_point
+       << " rays a point through a pupil of radius " << gfmt(G.pupil_radius) << " on the entrance face. "
+       << (f.grid_inverted_as_paraxial ? "Near the axis the measured magnification is " + gfmt(G.axis_magnification) +
                                              ", within 1 % of the paraxial one"
-                                       : "Near the axis the measured magnification is " + g(G.axis_magnification) +
+                                       : "Near the axis the measured magnification is " + gfmt(G.axis_magnification) +
                                              ", more than 1 % from the paraxial one")
-       << "; at the grid's corner " << g(G.corner_magnification) << " (distortion "
-       << g(100 * (G.corner_magnification / G.axis_magnification - 1), 3) << " %); largest RMS spot " << g(G.max_spot, 3)
+       << "; at the grid's corner " << gfmt(G.corner_magnification) << " (distortion "
+       << gfmt(100 * (G.corner_magnification / G.axis_magnification - 1), 3) << " %); largest RMS spot " << gfmt(G.max_spot, 3)
        << ".\n\n";
     md << "## 2. Mirages\n\nRays from an eye over the spherical Earth to the radial plane at the object's distance "
           "or to the ground; the heights they reach there against their elevation at the eye (a run of heights falling "
           "as the elevation rises is an inverted image).\n\n";
     md << "**Inferior mirage over a hot road** (mirage_road.png): the standard atmosphere at "
-       << g(r.road.sea_level_temperature_K - 273.15, 3) << " °C with the surface layer ΔT = " << g(r.road.delta_T)
-       << " K, h_s = " << g(r.road.surface_height) << " m (docs/grin.md); eye at " << g(r.road.eye_height) << " m. "
+       << gfmt(r.road.sea_level_temperature_K - 273.15, 3) << " °C with the surface layer ΔT = " << gfmt(r.road.delta_T)
+       << " K, h_s = " << gfmt(r.road.surface_height) << " m (docs/grin.md); eye at " << gfmt(r.road.eye_height) << " m. "
        << mirage_text(r.road, f.road_inverted, "road") << "\n\n"
        << road_branches.markdown(4) << "\n";
-    md << "**Superior mirage over a cold sea** (mirage_sea.png): " << g(r.sea.sea_level_temperature_K - 273.15, 3)
-       << " °C at the sea, 6.5 K/km lapse, an inversion of " << g(r.sea.delta_T) << " K centred at "
-       << g(r.sea.surface_height) << " m (a logistic step 2 m wide), the index Ciddor's, tabulated; eye at "
-       << g(r.sea.eye_height) << " m, a ship at " << g(r.sea.distance / 1000, 3) << " km. "
+    md << "**Superior mirage over a cold sea** (mirage_sea.png): " << gfmt(r.sea.sea_level_temperature_K - 273.15, 3)
+       << " °C at the sea, 6.5 K/km lapse, an inversion of " << gfmt(r.sea.delta_T) << " K centred at "
+       << gfmt(r.sea.surface_height) << " m (a logistic step 2 m wide), the index Ciddor's, tabulated; eye at "
+       << gfmt(r.sea.eye_height) << " m, a ship at " << gfmt(r.sea.distance / 1000, 3) << " km. "
        << mirage_text(r.sea, f.sea_inverted, "sea") << "\n\n"
        << sea_branches.markdown(4) << "\n";
     md << "## 3. The setting sun\n\nStandard atmosphere (15 °C, 101.325 kPa, dry), 550 nm, the sun's semidiameter "
-       << g(r.sun.semidiameter_arcmin) << "′. " << (f.sun_flattened
-              ? "With its lower limb on the horizon the sun is flattened to " + g(r.sun.rows.front().ratio, 3) +
+       << gfmt(r.sun.semidiameter_arcmin) << "′. " << (f.sun_flattened
+              ? "With its lower limb on the horizon the sun is flattened to " + gfmt(r.sun.rows.front().ratio, 3) +
                     " of its width, and the flattening eases as it rises."
-              : "With its lower limb on the horizon the ratio of its diameters is " + g(r.sun.rows.front().ratio, 3) +
+              : "With its lower limb on the horizon the ratio of its diameters is " + gfmt(r.sun.rows.front().ratio, 3) +
                     ", outside 0.75–0.9 or not rising with altitude.")
        << " Figure: sun.png.\n\n" << sun.markdown(5) << "\n"
        << (f.green_above_red ? "Green light (520 nm) is refracted more than red (650 nm) at every altitude, by " +
-                                   g(r.sun.limbs.front().traced_arcsec, 4) +
+                                   gfmt(r.sun.limbs.front().traced_arcsec, 4) +
                                    "″ at the horizon (traced, within 0.01″ of the integral): the green limb stands above the red one."
                              : "The traced separation of the green and red limbs is not positive everywhere or differs from the "
                                "integral by more than 0.01″.")
        << "\n\n" << limbs.markdown(6) << "\n";
     md << "## 4. Astronomical refraction\n\nBennett's conditions (10 °C, 101.0 kPa, dry), 550 nm. "
        << (f.traced_is_integral ? "The traced refraction equals the refraction integral to " +
-                                      g(r.refraction.max_traced_integral_arcsec, 2) + "″ (≤ 0.01″) at every altitude. "
+                                      gfmt(r.refraction.max_traced_integral_arcsec, 2) + "″ (≤ 0.01″) at every altitude. "
                                 : "The traced refraction differs from the integral by up to " +
-                                      g(r.refraction.max_traced_integral_arcsec, 2) + "″. ")
+                                      gfmt(r.refraction.max_traced_integral_arcsec, 2) + "″. ")
        << (f.bennett_within ? "Bennett's corrected formula is within his stated 0.07′ of the integral from 5° up"
                             : "Bennett's corrected formula is not within 0.07′ of the integral everywhere from 5° up")
-       << "; largest differences from the integral: Bennett " << g(r.refraction.max_bennett_arcmin, 3) << "′, Sæmundsson "
-       << g(r.refraction.max_saemundsson_arcmin, 3) << "′ (near the horizon). Figure: refraction.png.\n\n"
+       << "; largest differences from the integral: Bennett " << gfmt(r.refraction.max_bennett_arcmin, 3) << "′, Sæmundsson "
+       << gfmt(r.refraction.max_saemundsson_arcmin, 3) << "′ (near the horizon). Figure: refraction.png.\n\n"
        << refr.markdown(6) << "\n";
     md << "## 5. The integrator's convergence\n\n"
        << (f.tolerance_proportional ? "The exit error falls in proportion to the tolerance" :
@@ -352,7 +352,7 @@ void write(const Result& r, const std::string& dir) {
         write_image(path(v.name + ".png"), v.image);
         write_text_atomic(path(v.name + ".json"), v.scene.dump(1) + "\n");
         md << "| " << v.title << " | " << v.name << ".png | " << v.image.width << "×" << v.image.height << " | "
-           << g(v.seconds, 3) << " | " << v.grin_segments << " | " << v.grin_evaluations << " | " << v.grin_exhausted
+           << gfmt(v.seconds, 3) << " | " << v.grin_segments << " | " << v.grin_evaluations << " | " << v.grin_exhausted
            << " |\n";
     }
     md << "\n" << write_shimmer(r.shimmer, f, dir);

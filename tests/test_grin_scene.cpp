@@ -157,7 +157,7 @@ TEST_CASE("Gradient-index media: impossible input is refused naming the file and
 
     json pov = luneburg_scene(1e-9);
     pov["render"] = {{"compat", "povray"}};
-    CHECK_THAT(error(pov), Catch::Contains("material 'lens': a gradient-index medium needs the physical mode"));
+    CHECK_THAT(error(pov), Catch::Contains("material 'lens': a \"grin\" material needs the physical mode (POV-Ray has no curved rays)"));
 }
 
 TEST_CASE("A ray that exhausts a gradient-index medium's step budget is lost light, counted, never a hang", "[grin]") {

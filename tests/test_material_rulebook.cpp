@@ -34,6 +34,7 @@ inline double band_index(const Glow&, double, const CompatRules&) { return 0.0; 
 inline const spectrum::Absorption* absorption(const Glow&) { return nullptr; }
 inline bool in_packets(const Glow&) { return true; }
 inline bool carries_stokes(const Glow&) { return true; }
+inline const char* povray_lacks(const Glow&) { return nullptr; }
 inline NodeRecord describe(const Glow&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"glow"};
 }
@@ -114,4 +115,19 @@ TEST_CASE("Material rulebook: the built-in kinds' rules as the scene file names 
     CHECK(!dispersive(Material{"d", material::Dielectric{}}));
     CHECK(transparent(Material{"u", material::Uniaxial{}}));
     CHECK(!transparent(Material{"m", material::Metal{}}));
+}
+
+TEST_CASE("Material rulebook: POV-Ray lacks birefringence and curved rays, and has every other kind",
+          "[materials]") {
+    CHECK(povray_lacks(Material{"d", material::Dielectric{}}) == nullptr);
+    CHECK(povray_lacks(Material{"f", material::Diffuse{}}) == nullptr);
+    CHECK(povray_lacks(Material{"m", material::Mirror{}}) == nullptr);
+    CHECK(povray_lacks(Material{"e", material::Emissive{}}) == nullptr);
+    CHECK(povray_lacks(Material{"l", material::Lambertian{}}) == nullptr);
+    CHECK(povray_lacks(Material{"t", material::Metal{}}) == nullptr);
+    REQUIRE(povray_lacks(Material{"u", material::Uniaxial{}}) != nullptr);
+    CHECK(std::string(povray_lacks(Material{"u", material::Uniaxial{}})) ==
+          "POV-Ray has no birefringence: a uniaxial crystal's rays carry their o/e wave along the ray tree");
+    REQUIRE(povray_lacks(Material{"g", material::Grin{}}) != nullptr);
+    CHECK(std::string(povray_lacks(Material{"g", material::Grin{}})) == "POV-Ray has no curved rays");
 }

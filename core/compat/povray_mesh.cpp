@@ -1,5 +1,7 @@
 #include <refract/core/compat/povray_mesh.h>
 
+#include <refract/core/compat/povray.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -9,7 +11,6 @@ namespace {
 
 constexpr double kEpsilon = 1e-10;         // frame.h EPSILON: a ray parallel to the plane
 constexpr double kDepthTolerance = 1e-6;   // mesh.cpp DEPTH_TOLERANCE
-constexpr double kMaxDistance = 1e7;       // frame.h MAX_DISTANCE
 
 // A value as single precision stores it. Through a volatile float: GCC 12's vectoriser
 // (-O2 and above) was seen to drop the float round trip of an Eigen vector's components.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include <refract/core/grin/check_range.h>
 #include <refract/geometry/error.h>
 
 namespace refract::grin {
@@ -13,11 +14,6 @@ constexpr double kZeroCelsius = 273.15;    // K
 constexpr double kGasConstant = 8.314510;  // J/(mol K), the value Ciddor uses
 constexpr double kWaterMolarMass = 0.018015;  // kg/mol, Ciddor
 
-void check_range(double v, double lo, double hi, const std::string& where, const char* field, const char* unit) {
-    if (!(v >= lo && v <= hi))
-        throw InputError(where + "/" + field + ": must be in [" + format_value(lo) + ", " + format_value(hi) + "]" +
-                         unit + ", got " + format_value(v));
-}
 
 double sigma2(double lambda_um) { return 1.0 / (lambda_um * lambda_um); }
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 
+#include <refract/core/grin/check_range.h>
 #include <refract/geometry/error.h>
 
 namespace refract::grin {
@@ -17,11 +18,6 @@ constexpr double kHydrostatic = kStandardGravity * kStandardAirMolarMass / kStan
 constexpr int kSurfaceSteps = 400;       // steps of the surface layer's table
 constexpr double kSurfaceExtent = 40.0;  // e-folding heights it covers (e⁻⁴⁰ ≈ 4·10⁻¹⁸)
 
-void check_range(double v, double lo, double hi, const std::string& where, const char* field, const char* unit) {
-    if (!(v >= lo && v <= hi))
-        throw InputError(where + "/" + field + ": must be in [" + format_value(lo) + ", " + format_value(hi) + "]" +
-                         unit + ", got " + format_value(v));
-}
 
 // The 1976 standard's layers below 84.852 km: base geopotential height (m) and lapse rate
 // dT/dH (K/m); the last entry starts the isothermal continuation.

@@ -7,6 +7,7 @@
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
+#include <refract/core/grin/check_range.h>
 #include <refract/geometry/error.h>
 
 namespace refract::grin {
@@ -14,11 +15,6 @@ namespace refract::grin {
 namespace {
 constexpr double kDeg = M_PI / 180.0;
 
-void check_range(double v, double lo, double hi, const char* where, const char* field, const char* unit) {
-    if (!(v >= lo && v <= hi))
-        throw InputError(std::string(where) + "/" + field + ": must be in [" + format_value(lo) + ", " +
-                         format_value(hi) + "]" + unit + ", got " + format_value(v));
-}
 }  // namespace
 
 double refraction_integral(const Atmosphere& atm, double lambda_um, double apparent_altitude_rad,

@@ -14,7 +14,7 @@ using detail::finite_vec;
 using detail::unit_in_place;
 
 namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 // Parallel (+1), antiparallel (−1) or neither (0), to rounding.
 int parallel(const Vec3& a, const Vec3& b) {
@@ -37,7 +37,7 @@ double signed_distance(const Slab& s, const Vec3& x) {
 }
 double signed_distance(const HalfSpace& h, const Vec3& x) { return h.normal.dot(x) - h.offset; }
 double signed_distance(const Polyhedron& q, const Vec3& x) {
-    double d = -inf;
+    double d = -kUnbounded;
     for (const HalfSpace& f : q.faces) d = std::max(d, signed_distance(f, x));
     return d;
 }
@@ -101,16 +101,16 @@ std::pair<double, double> extent(const Slab& s, const Vec3& u) {
     const int p = parallel(u, s.normal);
     if (p > 0) return {s.lo, s.hi};
     if (p < 0) return {-s.hi, -s.lo};
-    return {-inf, inf};
+    return {-kUnbounded, kUnbounded};
 }
 std::pair<double, double> extent(const HalfSpace& h, const Vec3& u) {
     const int p = parallel(u, h.normal);
-    if (p > 0) return {-inf, h.offset};
-    if (p < 0) return {-h.offset, inf};
-    return {-inf, inf};
+    if (p > 0) return {-kUnbounded, h.offset};
+    if (p < 0) return {-h.offset, kUnbounded};
+    return {-kUnbounded, kUnbounded};
 }
 std::pair<double, double> extent(const Polyhedron& q, const Vec3& u) {
-    double lo = inf, hi = -inf;
+    double lo = kUnbounded, hi = -kUnbounded;
     for (const Vec3& v : q.vertices) {
         lo = std::min(lo, u.dot(v));
         hi = std::max(hi, u.dot(v));
@@ -138,8 +138,8 @@ double max_distance_from_line(const Box& b, const Vec3& p, const Vec3& d) {
     }
     return m;
 }
-double max_distance_from_line(const Slab&, const Vec3&, const Vec3&) { return inf; }
-double max_distance_from_line(const HalfSpace&, const Vec3&, const Vec3&) { return inf; }
+double max_distance_from_line(const Slab&, const Vec3&, const Vec3&) { return kUnbounded; }
+double max_distance_from_line(const HalfSpace&, const Vec3&, const Vec3&) { return kUnbounded; }
 double max_distance_from_line(const Polyhedron& q, const Vec3& p, const Vec3& d) {
     double m = 0;  // convex: the largest distance is at a vertex
     for (const Vec3& v : q.vertices) m = std::max(m, line_distance(v, p, d));

@@ -57,6 +57,7 @@ inline const spectrum::Absorption* absorption(const Dielectric& m) { return m.ab
 inline bool in_packets(const Dielectric&) { return true; }
 // Exact polarisation needs the amplitudes: the Fresnel reflectance.
 inline bool carries_stokes(const Dielectric& m) { return m.reflectance == ReflectanceModel::Fresnel; }
+inline const char* povray_lacks(const Dielectric&) { return nullptr; }
 // The node's relative index and cosine (at the material's own ior or the band's) and its
 // Fresnel terms (none: it reflects totally), as `refract trace` records them.
 struct NodeFresnel {

@@ -33,6 +33,7 @@ inline double band_index(const Diffuse&, double, const CompatRules&) { return 0.
 inline const spectrum::Absorption* absorption(const Diffuse&) { return nullptr; }
 inline bool in_packets(const Diffuse&) { return true; }
 inline bool carries_stokes(const Diffuse&) { return true; }
+inline const char* povray_lacks(const Diffuse&) { return nullptr; }
 inline NodeRecord describe(const Diffuse&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"diffuse"};
 }

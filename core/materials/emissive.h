@@ -30,6 +30,7 @@ inline double band_index(const Emissive&, double, const CompatRules&) { return 0
 inline const spectrum::Absorption* absorption(const Emissive&) { return nullptr; }
 inline bool in_packets(const Emissive&) { return true; }
 inline bool carries_stokes(const Emissive&) { return true; }
+inline const char* povray_lacks(const Emissive&) { return nullptr; }
 inline NodeRecord describe(const Emissive&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"emissive"};
 }

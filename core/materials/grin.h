@@ -62,6 +62,7 @@ inline double band_index(const Grin&, double, const CompatRules&) { return 0.0; 
 inline const spectrum::Absorption* absorption(const Grin&) { return nullptr; }
 inline bool in_packets(const Grin&) { return false; }
 inline bool carries_stokes(const Grin&) { return true; }
+inline const char* povray_lacks(const Grin&) { return "POV-Ray has no curved rays"; }
 // The dielectric node of the local index (at the D line: the record has no wavelength).
 inline NodeRecord describe(const Grin& m, const Interaction& in, const SurfaceHit& h, const Ray& ray, double) {
     return describe(m.interface_at(h.hit.point, 0.0), in, h, ray, 0.0);

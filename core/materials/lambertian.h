@@ -36,6 +36,7 @@ inline double band_index(const Lambertian&, double, const CompatRules&) { return
 inline const spectrum::Absorption* absorption(const Lambertian&) { return nullptr; }
 inline bool in_packets(const Lambertian&) { return true; }
 inline bool carries_stokes(const Lambertian&) { return true; }
+inline const char* povray_lacks(const Lambertian&) { return nullptr; }
 inline NodeRecord describe(const Lambertian&, const Interaction&, const SurfaceHit&, const Ray&, double) {
     return NodeRecord{"diffuse"};
 }

@@ -38,6 +38,7 @@ inline double band_index(const Metal&, double, const CompatRules&) { return 0.0;
 inline const spectrum::Absorption* absorption(const Metal&) { return nullptr; }
 inline bool in_packets(const Metal&) { return true; }
 inline bool carries_stokes(const Metal&) { return true; }
+inline const char* povray_lacks(const Metal&) { return nullptr; }
 inline NodeRecord describe(const Metal&, const Interaction& in, const SurfaceHit&, const Ray&, double) {
     NodeRecord r{"mirror"};
     r.R = in.reflectance;

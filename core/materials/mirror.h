@@ -33,6 +33,7 @@ inline double band_index(const Mirror&, double, const CompatRules&) { return 0.0
 inline const spectrum::Absorption* absorption(const Mirror&) { return nullptr; }
 inline bool in_packets(const Mirror&) { return true; }
 inline bool carries_stokes(const Mirror&) { return true; }
+inline const char* povray_lacks(const Mirror&) { return nullptr; }
 inline NodeRecord describe(const Mirror&, const Interaction& in, const SurfaceHit&, const Ray&, double) {
     NodeRecord r{"mirror"};
     r.R = in.reflectance;

@@ -51,6 +51,7 @@ inline double band_index(const Uniaxial& m, double nm, const CompatRules&) { ret
 inline const spectrum::Absorption* absorption(const Uniaxial&) { return nullptr; }
 inline bool in_packets(const Uniaxial&) { return false; }
 inline bool carries_stokes(const Uniaxial&) { return true; }
+inline const char* povray_lacks(const Uniaxial&) { return "POV-Ray has no birefringence: a uniaxial crystal's rays carry their o/e wave along the ray tree"; }
 // Double refraction, or total internal reflection when no beam is transmitted.
 inline NodeRecord describe(const Uniaxial&, const Interaction& in, const SurfaceHit&, const Ray&, double) {
     int transmitted = 0;

@@ -5,6 +5,8 @@
 // plane; we drop repeated and collinear vertices, measure the proportions on the exact result,
 // and convert to double only at the end. The construction is described in docs/gems.md.
 #include <algorithm>
+
+#include <refract/geometry/constants.h>
 #include <cmath>
 #include <map>
 
@@ -22,7 +24,6 @@ using exact::P3;
 using exact::Pl;
 using exact::V3;
 
-constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void degenerate(const std::string& why) {
     throw InputError("brilliant cut: these parameters give a degenerate brilliant (" + why + ")");

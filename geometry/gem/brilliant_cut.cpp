@@ -1,6 +1,8 @@
 // Round brilliant parameters: presets, domain and feasibility checks, closed forms.
 // (No CGAL here; the exact construction is brilliant.cpp.)
 #include <algorithm>
+
+#include <refract/geometry/constants.h>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -13,7 +15,6 @@
 namespace refract {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 double rad(double deg) { return deg * kPi / 180.0; }
 
 std::string num(double v) { return format_significant(v, 6); }

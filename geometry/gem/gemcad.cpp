@@ -1,6 +1,8 @@
 // GemCad .asc designs: the reader, the writer and the brilliant as a design (gemcad.h).
 // No CGAL here; the exact construction is gemcad_build.cpp.
 #include <cerrno>
+
+#include <refract/geometry/constants.h>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -14,7 +16,6 @@
 namespace refract {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::uintmax_t kMaxDesignBytes = std::uintmax_t{1} << 20;
 constexpr int kMaxGear = 1000;
 constexpr std::size_t kMaxFacets = 4096;
@@ -94,7 +95,7 @@ void parse_tier(const std::vector<std::string>& f, const Line& line, GemcadDesig
     d.tiers.push_back(std::move(t));
 }
 
-std::string num(double v) { return format_shortest(v == 0 ? 0.0 : v); }
+std::string shortest_number(double v) { return format_shortest(v == 0 ? 0.0 : v); }
 
 }  // namespace
 
@@ -187,14 +188,14 @@ GemcadDesign read_gemcad(const std::string& path) {
 std::string gemcad_text(const GemcadDesign& d) {
     std::ostringstream s;
     s << (d.version.empty() ? "GemCad 5.0" : d.version) << "\n";
-    s << "g " << d.gear << " " << num(d.location) << "\n";
+    s << "g " << d.gear << " " << shortest_number(d.location) << "\n";
     s << "y " << d.symmetry << " " << (d.mirror ? "y" : "n") << "\n";
-    if (d.index > 0) s << "I " << num(d.index) << "\n";
+    if (d.index > 0) s << "I " << shortest_number(d.index) << "\n";
     for (const std::string& h : d.headings) s << "H " << h << "\n";
     for (const GemcadTier& t : d.tiers) {
-        s << "a " << (t.pavilion ? "-" : "") << num(t.angle) << " " << num(t.distance);
+        s << "a " << (t.pavilion ? "-" : "") << shortest_number(t.angle) << " " << shortest_number(t.distance);
         for (std::size_t k = 0; k < t.indices.size(); ++k) {
-            s << " " << num(t.indices[k]);
+            s << " " << shortest_number(t.indices[k]);
             if (k < t.names.size() && !t.names[k].empty()) s << " n " << t.names[k];
         }
         if (!t.instructions.empty()) s << " " << t.instructions;

@@ -77,8 +77,8 @@ boost::optional<P3> interior_point(const std::vector<Pl>& planes) {
     return q;
 }
 
-thread_local std::string t_source;  // the design being built, for fail()
-[[noreturn]] void fail(const std::string& why) {
+thread_local std::string t_source;  // the design being built, for refuse()
+[[noreturn]] void refuse(const std::string& why) {
     throw InputError(t_source + ": the design's facets give a degenerate stone (" + why + ")");
 }
 
@@ -137,15 +137,15 @@ void check_closed_convex(const Gem& gem, double tol) {
     for (const auto& [e, n] : edges) {
         const auto back = edges.find({e.second, e.first});
         if (n != 1 || back == edges.end() || back->second != 1)
-            fail("the facets do not close: an edge is not shared by exactly two facets");
+            refuse("the facets do not close: an edge is not shared by exactly two facets");
     }
     const long V = static_cast<long>(gem.mesh.vertices.size()), E = static_cast<long>(edges.size() / 2),
                F = static_cast<long>(gem.facets.size());
-    if (V - E + F != 2) fail("Euler characteristic " + std::to_string(V - E + F) + ", not 2");
+    if (V - E + F != 2) refuse("Euler characteristic " + std::to_string(V - E + F) + ", not 2");
     for (const GemFacet& f : gem.facets)
         for (const Vec3& p : gem.mesh.vertices)
             if (f.plane.normal.dot(p) - f.plane.offset > tol)
-                fail("not convex: a vertex lies outside facet '" + f.label + "'");
+                refuse("not convex: a vertex lies outside facet '" + f.label + "'");
 }
 
 struct Extent {
@@ -205,7 +205,7 @@ DesignGem build_design(const GemcadDesign& d) {
                                  " cuts the stone away: nothing of the stone is left");
         throw InputError(d.source + ": the facets cut the stone away: nothing is left");
     }
-    const std::vector<Loop> loops = facet_loops(all.planes, *inside, fail);
+    const std::vector<Loop> loops = facet_loops(all.planes, *inside, refuse);
     for (int k = 0; k < 6; ++k)
         if (!loops[static_cast<std::size_t>(k)].empty())
             throw InputError(d.source + ": the tiers do not close the stone: it is unbounded towards " + all.labels[k] +

@@ -13,7 +13,7 @@
 namespace refract::simd {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 }  // namespace
 
 // W spheres a step: the nearer root in (t_min, t_max), else the farther one, else +inf (a
@@ -24,7 +24,7 @@ void sphere_roots(const double* cx, const double* cy, const double* cz, const do
     using B = Batch<A>;
     constexpr std::size_t W = B::size;
     const Vec3Batch<A> origin{B(o[0]), B(o[1]), B(o[2])}, dir{B(v[0]), B(v[1]), B(v[2])};
-    const B lo(t_min), hi(t_max), inf(kInf);
+    const B lo(t_min), hi(t_max), inf(kInfinity);
     for (std::size_t i = 0; i < n; i += W) {
         const Vec3Batch<A> centre{B::load_unaligned(cx + i), B::load_unaligned(cy + i), B::load_unaligned(cz + i)};
         const auto [b, disc] = sphere_quadratic(origin - centre, dir, B::load_unaligned(radius + i));

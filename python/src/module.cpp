@@ -186,7 +186,7 @@ py::dict render(const ScenePtr& scene, int threads, bool spectral_channels, bool
 struct NodeKeys {
     py::object id, parent, depth, reflections, transmissions, origin, direction, weight, event, hit, length, point,
         normal, object, facet, facet_label, entering, eta, cos_i, cos_t, Rs, Rp, R, light, wavelength, stokes, stokes_x,
-        wave, index, wave_normal;
+        wave, index, wave_normal, path;
     NodeKeys() {
         auto k = [](const char* s) { return py::reinterpret_steal<py::object>(PyUnicode_InternFromString(s)); };
         id = k("id"), parent = k("parent"), depth = k("depth"), reflections = k("reflections");
@@ -196,6 +196,7 @@ struct NodeKeys {
         eta = k("eta"), cos_i = k("cos_i"), cos_t = k("cos_t"), Rs = k("Rs"), Rp = k("Rp"), R = k("R");
         light = k("light"), wavelength = k("wavelength"), stokes = k("stokes"), stokes_x = k("stokes_x");
         wave = k("wave"), index = k("index"), wave_normal = k("wave_normal");
+        path = k("path");
     }
 };
 
@@ -242,7 +243,7 @@ py::tuple trace_result(const TraceRecord& rec) {
     const py::object wl = rec.wavelength_nm > 0 ? py::object(py::float_(rec.wavelength_nm)) : py::none();
     size_t n = 0;
     for (const TraceSegment& s : rec.segments) {
-        py::object dict = py::reinterpret_steal<py::object>(_PyDict_NewPresized(30));
+        py::object dict = py::reinterpret_steal<py::object>(_PyDict_NewPresized(31));
         PyObject* d = dict.ptr();
         const auto put = [&](const py::object& key, PyObject* value) {  // steals value
             if (!value || PyDict_SetItem(d, key.ptr(), value) != 0) {
@@ -294,6 +295,14 @@ py::tuple trace_result(const TraceRecord& rec) {
         put(k.wave, crystal ? PyUnicode_FromString(s.wave == biref::Wave::Ordinary ? "o" : "e") : none_ref());
         put(k.index, number(crystal && s.index > 0, s.index));
         put(k.wave_normal, crystal && s.index > 0 ? float3(s.wave_normal) : none_ref());
+        if (s.path.empty()) {
+            put(k.path, none_ref());
+        } else {
+            PyObject* points = PyList_New(static_cast<Py_ssize_t>(s.path.size()));
+            if (!points) throw py::error_already_set();
+            for (size_t i = 0; i < s.path.size(); ++i) PyList_SET_ITEM(points, static_cast<Py_ssize_t>(i), float3(s.path[i]));
+            put(k.path, points);
+        }
         PyList_SET_ITEM(nodes.ptr(), static_cast<py::ssize_t>(n++), dict.release().ptr());
     }
     return py::make_tuple(nodes, tuple3(rec.radiance), wl);
