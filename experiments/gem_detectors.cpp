@@ -11,12 +11,6 @@ namespace refract::gem_metrics {
 bool shows_nail_head(const Metric& m) { return m.value >= kNailHeadThreshold; }
 bool shows_fish_eye(const Metric& m) { return m.value >= kFishEyeThreshold; }
 
-double Detectors::Sum::variance_of_mean() const {
-    if (n < 2) return 0.0;
-    const double m = s / n;
-    return std::max(0.0, (s2 - n * m * m) / (n - 1)) / n;
-}
-
 Detectors::Detectors(const Gem& gem) : gem_(&gem) {
     double best = 1 - 1e-9;
     for (size_t i = 0; i < gem.facets.size(); ++i) {

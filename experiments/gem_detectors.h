@@ -58,21 +58,10 @@ public:
     Metric fish_eye() const;
 
 private:
-    struct Sum {
-        double s = 0, s2 = 0;
-        long n = 0;
-        void add(double v) {
-            s += v;
-            s2 += v * v;
-            ++n;
-        }
-        double mean() const { return n > 0 ? s / n : 0.0; }
-        double variance_of_mean() const;
-    };
     const Gem* gem_;
     int table_ = -1;
     double table_radius_ = 0, table_z_ = 0;
-    Sum centre_head_, rest_head_, table_girdle_;
+    Mean centre_head_, rest_head_, table_girdle_;
 };
 
 }  // namespace refract::gem_metrics

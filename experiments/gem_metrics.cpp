@@ -19,23 +19,6 @@ namespace refract::gem_metrics {
 
 namespace {
 
-// Mean and standard error of independent samples.
-struct Mean {
-    double sum = 0, sum2 = 0;
-    long n = 0;
-    void add(double v) {
-        sum += v;
-        sum2 += v * v;
-        ++n;
-    }
-    Metric metric() const {
-        if (n == 0) return {};
-        const double m = sum / n;
-        const double var = n > 1 ? std::max(0.0, (sum2 - n * m * m) / (n - 1)) : 0.0;
-        return {m, std::sqrt(var / n)};
-    }
-};
-
 // The eye ray of sample i of a metric (stream): the viewer's direction v drawn uniformly
 // over the cap of directions within `cone_deg` of the axis; a distant viewer, so parallel
 // rays along −v through points drawn uniformly over the stone's outline seen from v

@@ -5,6 +5,8 @@
 // cut under the documented observation set-ups. `measure` is single-threaded and
 // deterministic for a given gem and options: a sweep runs many cuts at once and its CSV is
 // byte-identical for any number of threads or MPI ranks.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -52,6 +54,28 @@ struct MetricOptions {
 struct Metric {
     double value = 0;
     double error = 0;
+};
+
+// Mean and standard error of independent samples.
+struct Mean {
+    double sum = 0, sum2 = 0;
+    long n = 0;
+    void add(double v) {
+        sum += v;
+        sum2 += v * v;
+        ++n;
+    }
+    double mean() const { return n > 0 ? sum / n : 0.0; }
+    // The variance of the mean: the samples' variance over n (0 below two samples).
+    double variance_of_mean() const {
+        if (n < 2) return 0.0;
+        const double m = sum / n;
+        return std::max(0.0, (sum2 - n * m * m) / (n - 1)) / n;
+    }
+    Metric metric() const {
+        if (n == 0) return {};
+        return {mean(), std::sqrt(variance_of_mean())};
+    }
 };
 
 struct GemMetrics {

@@ -25,11 +25,14 @@
 #include <refract/core/grin/step_study.h>
 #include <refract/core/image.h>
 #include <refract/experiments/experiment.h>
+#include <refract/geometry/constants.h>
+
+namespace refract {
+struct Scene;
+}
 
 namespace refract::experiments::grin_media {
 
-// Angles in the studies (grin.cpp, grin_sky.cpp).
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 // A ray diagram: points of ray `ray` in the figure's plane (u across, v up), in order.
@@ -245,6 +248,10 @@ SunStudy sun_study(bool quick);
 RefractionStudy refraction_study(bool quick);
 ConvergenceStudy convergence_study(bool quick);
 std::vector<ViewStudy> view_study(bool quick, int threads);
+// One rendered view: `scene` (kept in the result) as `parsed` (read from it, with the file
+// name its relative paths resolve against), its image, time and GRIN counters.
+ViewStudy render_view(const std::string& name, const std::string& title, const nlohmann::json& scene,
+                      const Scene& parsed, int threads);
 ShimmerStudy shimmer_study(bool quick, int threads);
 // The shimmer study's files (CSV, figure, shimmer.vdb, the view) and its summary section.
 std::string write_shimmer(const ShimmerStudy& s, const Findings& f, const std::string& dir);

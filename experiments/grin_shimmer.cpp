@@ -193,22 +193,11 @@ ShimmerStudy shimmer_study(bool quick, int threads) {
                     s.vdb_max_index_difference, std::abs(grin::index(read, x, 0.55) - grin::index(direct, x, 0.55)));
         }
     }
-    ViewStudy& v = s.view;
-    v.name = "shimmer_view";
-    v.title = "Heat shimmer: a checkerboard 55 m away through a " + std::to_string(static_cast<int>(s.view_amplitude_K)) +
-              " K turbulent plume read from shimmer.vdb";
-    v.scene = scene;
-    RenderOptions o;
-    o.threads = threads;
-    const auto t0 = std::chrono::steady_clock::now();
-    RenderResult rr = render(parsed, o);
-    v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    v.image = std::move(rr.image);
-    v.grin_segments = rr.stats.grin_segments;
-    v.grin_evaluations = rr.stats.grin_evaluations;
-    v.grin_exhausted = rr.stats.grin_exhausted;
-    v.finite = true;
-    for (double x : v.image.rgb) v.finite = v.finite && std::isfinite(x);
+    s.view = render_view("shimmer_view",
+                         "Heat shimmer: a checkerboard 55 m away through a " +
+                                 std::to_string(static_cast<int>(s.view_amplitude_K)) +
+                                 " K turbulent plume read from shimmer.vdb",
+                         scene, parsed, threads);
     std::filesystem::remove_all(dir);
     return s;
 }

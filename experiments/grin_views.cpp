@@ -55,16 +55,22 @@ json road_scene(int w, int h) {
         {"render", {{"max_depth", 6}}}};
 }
 
-ViewStudy render_view(const std::string& name, const std::string& title, json scene, int threads) {
+ViewStudy render_view(const std::string& name, const std::string& title, const json& scene, int threads) {
+    return grin_media::render_view(name, title, scene, parse_scene(scene, name + ".json"), threads);
+}
+
+}  // namespace
+
+ViewStudy render_view(const std::string& name, const std::string& title, const json& scene, const Scene& parsed,
+                      int threads) {
     ViewStudy v;
     v.name = name;
     v.title = title;
     v.scene = scene;
-    const Scene s = parse_scene(scene, name + ".json");
     RenderOptions o;
     o.threads = threads;
     const auto t0 = std::chrono::steady_clock::now();
-    RenderResult r = render(s, o);
+    RenderResult r = render(parsed, o);
     v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     v.image = std::move(r.image);
     v.grin_segments = r.stats.grin_segments;
@@ -74,8 +80,6 @@ ViewStudy render_view(const std::string& name, const std::string& title, json sc
     for (double x : v.image.rgb) v.finite = v.finite && std::isfinite(x);
     return v;
 }
-
-}  // namespace
 
 std::vector<ViewStudy> view_study(bool quick, int threads) {
     const int w = quick ? 160 : 640, h = quick ? 120 : 480;

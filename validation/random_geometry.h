@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <refract/geometry/constants.h>
 #include <refract/core/camera.h>
 #include <refract/geometry/ray.h>
 
@@ -22,7 +23,6 @@ namespace refract::validation::random_detail {
 using nlohmann::json;
 using Mat3 = Eigen::Matrix3d;
 
-constexpr double kPi = 3.14159265358979323846;
 
 // ---- numbers that are the same on every platform --------------------------------------
 // Only + − × ÷, sqrt, floor and round (exact or correctly rounded in IEEE 754) reach the
