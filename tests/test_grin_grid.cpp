@@ -223,6 +223,16 @@ TEST_CASE("OpenVDB grid written and read back through a scene equals the same sa
     const std::string e =
             media_error(sphere_scene({{"kind", "grid"}, {"file", "field.vdb"}, {"grid", "T"}}), (dir / "a.json").string());
     CHECK(e.find("/materials/g/profile/grid: no grid 'T'") != std::string::npos);
+    // An OpenVDB file's active voxels far apart: 4097³ dense samples, past kMaxGridSamples,
+    // refused before anything is allocated; 400³ allowed.
+    try {
+        check_grid_size(4097, 4097, 4097, "v.json: /materials/g/profile/file");
+        FAIL("not refused");
+    } catch (const InputError& err) {
+        CHECK(std::string(err.what()) == "v.json: /materials/g/profile/file: the grid's active voxels span "
+                                         "4097×4097×4097 samples, more than 67108864");
+    }
+    CHECK_NOTHROW(check_grid_size(400, 400, 400, "v.json"));
     std::filesystem::remove_all(dir);
 }
 

@@ -110,6 +110,13 @@ SplineValue tricubic_bspline(const std::vector<double>& c, const std::array<int,
     return {v, Vec3(gx, gy, gz)};
 }
 
+void check_grid_size(long long nx, long long ny, long long nz, const std::string& where) {
+    const double count = static_cast<double>(nx) * static_cast<double>(ny) * static_cast<double>(nz);
+    if (!(count <= static_cast<double>(kMaxGridSamples)))
+        throw InputError(where + ": the grid's active voxels span " + std::to_string(nx) + "×" + std::to_string(ny) +
+                         "×" + std::to_string(nz) + " samples, more than " + std::to_string(kMaxGridSamples));
+}
+
 SampledGrid sampled_grid(GridSamples s, GridQuantity quantity, double T_ref, double pressure, const std::string& field,
                          const std::string& where) {
     const std::string base = where + "/" + field;

@@ -35,6 +35,14 @@ struct GridSamples {
     std::vector<double> values;
 };
 
+// The most samples a grid may have (2^26: 512 MiB of samples and as much of spline
+// coefficients). An OpenVDB file's active voxels are made dense over their bounding box, so
+// two voxels far apart would otherwise ask for any amount of memory.
+inline constexpr std::size_t kMaxGridSamples = std::size_t{1} << 26;
+// InputError "WHERE: the grid's active voxels span NX×NY×NZ samples, more than …" when
+// nx·ny·nz exceeds kMaxGridSamples (checked before the dense samples are allocated).
+void check_grid_size(long long nx, long long ny, long long nz, const std::string& where);
+
 enum class GridQuantity { index, temperature };
 
 struct SampledGrid {

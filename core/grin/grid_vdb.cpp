@@ -38,6 +38,7 @@ GridSamples dense(const GridT& grid, const std::string& where) {
     const openvdb::Vec3d step = t.voxelSize();
     GridSamples s;
     const openvdb::Coord dim = box.dim();
+    check_grid_size(dim.x(), dim.y(), dim.z(), where + "/file");
     s.dims = {dim.x(), dim.y(), dim.z()};
     s.origin = Vec3(lo.x(), lo.y(), lo.z());
     s.spacing = Vec3(step.x(), step.y(), step.z());
