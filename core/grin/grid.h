@@ -118,9 +118,15 @@ Vec3 grid_hi(const SampledGrid& g);
 // InputError "WHERE/file: …" or "WHERE/grid: …" for a missing or unreadable file, no such
 // grid, a grid of another type, an empty grid.
 GridSamples read_vdb_grid(const std::string& path, const std::string& grid_name, const std::string& where);
-// Writes `s` as a FloatGrid named `grid_name` with a uniform voxel size (s.spacing's x;
-// spacing must be uniform) and the translation placing voxel (0, 0, 0) at s.origin, every
-// voxel active. std::runtime_error on failure.
-void write_vdb_grid(const std::string& path, const std::string& grid_name, const GridSamples& s);
+// Writes `s` as a grid named `grid_name` (a FloatGrid, what other tools read; `precision`
+// double: a DoubleGrid, for index samples whose refractivity n − 1 a float would round to
+// 1e-7/3e-4 ≈ 3e-4 of itself) with a uniform voxel size (s.spacing's x) and the
+// translation placing voxel (0, 0, 0) at s.origin, every voxel active. The file appears
+// whole or not at all (geometry/atomic_file.h). InputError naming `path` for a spacing that
+// is not uniform, a grid name that is empty, samples that are not finite, dims below 1 or
+// a value count that does not match them, and when the file cannot be written.
+enum class VdbPrecision { single, double_ };
+void write_vdb_grid(const std::string& path, const std::string& grid_name, const GridSamples& s,
+                    VdbPrecision precision = VdbPrecision::single);
 
 }  // namespace refract::grin

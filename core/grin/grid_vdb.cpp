@@ -5,9 +5,12 @@
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <sstream>
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 
+#include <refract/geometry/atomic_file.h>
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
 
@@ -88,12 +91,12 @@ GridSamples read_vdb_grid(const std::string& path, const std::string& grid_name,
                      " grid, a float or double grid is needed");
 }
 
-void write_vdb_grid(const std::string& path, const std::string& grid_name, const GridSamples& s) {
-    initialise();
-    if (!(std::abs(s.spacing.x() - s.spacing.y()) <= 1e-12 * s.spacing.x() &&
-          std::abs(s.spacing.x() - s.spacing.z()) <= 1e-12 * s.spacing.x()))
-        throw std::runtime_error("write_vdb_grid: the spacing must be the same along x, y and z");
-    openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create(0.0f);
+namespace {
+
+template <typename GridT>
+typename GridT::Ptr filled_grid(const std::string& grid_name, const GridSamples& s) {
+    using V = typename GridT::ValueType;
+    typename GridT::Ptr g = GridT::create(V(0));
     g->setName(grid_name);
     openvdb::math::Transform::Ptr t = openvdb::math::Transform::createLinearTransform(s.spacing.x());
     t->postTranslate(openvdb::Vec3d(s.origin.x(), s.origin.y(), s.origin.z()));
@@ -102,11 +105,36 @@ void write_vdb_grid(const std::string& path, const std::string& grid_name, const
     size_t n = 0;
     for (int k = 0; k < s.dims[2]; ++k)
         for (int j = 0; j < s.dims[1]; ++j)
-            for (int i = 0; i < s.dims[0]; ++i) acc.setValueOn(openvdb::Coord(i, j, k), static_cast<float>(s.values[n++]));
-    openvdb::io::File f(path);
-    openvdb::GridPtrVec grids{g};
-    f.write(grids);
-    f.close();
+            for (int i = 0; i < s.dims[0]; ++i) acc.setValueOn(openvdb::Coord(i, j, k), static_cast<V>(s.values[n++]));
+    return g;
+}
+
+}  // namespace
+
+void write_vdb_grid(const std::string& path, const std::string& grid_name, const GridSamples& s, VdbPrecision precision) {
+    initialise();
+    const auto fail = [&](const std::string& why) { throw InputError(path + ": " + why); };
+    if (grid_name.empty()) fail("the grid needs a name");
+    for (int a = 0; a < 3; ++a)
+        if (s.dims[a] < 1) fail("the grid needs at least one sample along each axis");
+    const size_t count = size_t(s.dims[0]) * size_t(s.dims[1]) * size_t(s.dims[2]);
+    if (s.values.size() != count)
+        fail(std::to_string(s.values.size()) + " values for " + std::to_string(count) + " samples");
+    if (!(s.spacing.x() > 0 && std::isfinite(s.spacing.x()) && s.origin.allFinite()))
+        fail("the spacing must be finite and > 0 and the origin finite");
+    if (!(std::abs(s.spacing.x() - s.spacing.y()) <= 1e-12 * s.spacing.x() &&
+          std::abs(s.spacing.x() - s.spacing.z()) <= 1e-12 * s.spacing.x()))
+        fail("an OpenVDB grid has one voxel size: the spacing must be the same along x, y and z");
+    for (size_t n = 0; n < count; ++n)
+        if (!std::isfinite(s.values[n])) fail("sample " + std::to_string(n) + " is " + format_value(s.values[n]));
+    openvdb::GridPtrVec grids;
+    if (precision == VdbPrecision::double_)
+        grids.push_back(filled_grid<openvdb::DoubleGrid>(grid_name, s));
+    else
+        grids.push_back(filled_grid<openvdb::FloatGrid>(grid_name, s));
+    std::ostringstream bytes(std::ios::binary);
+    openvdb::io::Stream(bytes).write(grids);
+    write_file_atomic(path, bytes.str());
 }
 
 }  // namespace refract::grin

@@ -38,6 +38,7 @@ from ._refract import (  # noqa: F401  (the public API)
     rtiow_dielectric,
     run_experiment,
     write_image,
+    write_vdb,
     yasuda1984,
 )
 from ._commands import angle_histogram, export_pov, farfield, measure, sweep, validate  # noqa: F401
@@ -52,7 +53,7 @@ __all__ = [
     "Dispersion", "FresnelTerms", "InputError", "RayTree", "RenderResult", "Scene", "angle_histogram",
     "brilliant_presets", "cut_brilliant", "dispersion", "experiments", "export_pov", "farfield", "fraunhofer", "gem_geometry", "gem_metrics", "gem_proportions", "load_scene", "material",
     "materials", "measure", "n", "ohtsuka1998", "optics", "optics_bench", "polarisation", "polarisation_sphere", "read_image", "render", "rtiow_dielectric", "run_experiment", "scene",
-    "sweep", "trace", "trace_pixel", "trace_rays", "validate", "validation_cases", "write_image", "yasuda1984",
+    "sweep", "trace", "trace_pixel", "trace_rays", "validate", "validation_cases", "write_image", "write_vdb", "yasuda1984",
 ]
 __version__ = _refract.__version__  # the project's version (CMakeLists.txt)
 for _c in (Dispersion, FresnelTerms, InputError, Scene):

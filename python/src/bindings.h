@@ -176,5 +176,6 @@ void bind_gem(py::module_& m);        // geometry/gem/brilliant.h
 void bind_experiments(py::module_& m);  // experiments/
 void bind_commands(py::module_& m);     // farfield, measure, export-pov, validate, sweep
 void bind_trace_rays(py::module_& m);   // core/trace_rays.h
+void bind_grin(py::module_& m);        // core/grin/grid.h: write_vdb
 
 }  // namespace refract::python

@@ -450,4 +450,5 @@ PYBIND11_MODULE(_refract, m) {
     bind_commands(m);
     m.attr("__version__") = REFRACT_VERSION;
     bind_trace_rays(m);
+    bind_grin(m);
 }

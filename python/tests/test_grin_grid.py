@@ -49,3 +49,45 @@ def test_a_temperature_field_with_a_zero_is_refused_naming_the_sample():
     s["materials"]["lens"]["profile"]["quantity"] = "temperature"
     with pytest.raises(Exception, match=r"/materials/lens/profile/values/1/2/3: the temperature 0 must be finite"):
         refract.render(refract.scene(s, "t.json"))
+
+
+def file_scene(path, spacing, grid):
+    s = grid_scene(None, spacing)
+    p = s["materials"]["lens"]["profile"]
+    del p["values"], p["origin"], p["spacing"]
+    p["file"], p["grid"] = str(path), grid
+    return s
+
+
+@pytest.mark.parametrize("precision,as_stored", [("double", np.float64), ("float", np.float32)])
+def test_write_vdb_gives_a_file_the_scene_reads_back_as_the_same_field(tmp_path, precision, as_stored):
+    values, h = sampled_luneburg()
+    path = tmp_path / "lens.vdb"
+    refract.write_vdb(str(path), values, origin=[-1.1, -1.1, -1.1], spacing=h, grid="n", precision=precision)
+    # What the file holds: the samples as a float or a double, so the inline field of the
+    # same stored numbers renders and traces identically.
+    stored = values.astype(as_stored).astype(np.float64)
+    from_file = refract.scene(file_scene(path, h, "n"), str(tmp_path / "s.json"))
+    inline = refract.scene(grid_scene(stored, h))
+    assert np.array_equal(refract.render(from_file, threads=1).rgb, refract.render(inline, threads=1).rgb)
+    ta = refract.trace(from_file, [0.4, 0.1, -3], [0, 0, 1])
+    tb = refract.trace(inline, [0.4, 0.1, -3], [0, 0, 1])
+    assert [p["point"] for p in ta] == [q["point"] for q in tb]
+    if precision == "float":
+        # A float keeps n to about 1e-7: 6e-8 is the largest rounding of these samples.
+        assert 0 < np.abs(stored - values).max() < 1.2e-7
+
+
+def test_write_vdb_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path):
+    path = tmp_path / "bad.vdb"
+    with pytest.raises(refract.InputError, match=r"write_vdb: values must be a 3D array"):
+        refract.write_vdb(str(path), np.ones((3, 3)))
+    bad = np.ones((3, 3, 3))
+    bad[1, 1, 1] = np.nan
+    with pytest.raises(refract.InputError, match=r"bad.vdb: sample 13 is nan"):
+        refract.write_vdb(str(path), bad)
+    with pytest.raises(refract.InputError, match=r"write_vdb: precision 'half': expected float or double"):
+        refract.write_vdb(str(path), np.ones((2, 2, 2)), precision="half")
+    with pytest.raises(refract.InputError, match=r"spacing -1 must be a finite number > 0"):
+        refract.write_vdb(str(path), np.ones((2, 2, 2)), spacing=-1)
+    assert list(tmp_path.iterdir()) == []
