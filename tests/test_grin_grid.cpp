@@ -162,6 +162,8 @@ TEST_CASE("Gladstone-Dale law for heated air: n(T) - 1 = (n_ref - 1) T_ref / T, 
           "[grin][grid]") {
     // By hand: refractivity 2.7e-4 at 288.15 K is 2.7e-4 · 288.15 / 330 = 2.357591e-4 at 330 K.
     CHECK(gladstone_dale_refractivity_at(2.7e-4, 288.15, 330.0) == Approx(2.3575909090909e-4).epsilon(1e-12));
+    // The ratio form the grid uses: density ratio q = 288.15/330 gives the same refractivity.
+    CHECK(gladstone_dale_refractivity(2.7e-4, 288.15 / 330.0) == Approx(2.3575909090909e-4).epsilon(1e-12));
     // A uniform 330 K grid: its index is Ciddor's at 288.15 K scaled by the density, which
     // Ciddor's own procedure at 330 K matches to the compressibility's share (< 1e-3 relative).
     GridSamples s = sample(3, -1, 1, [](const Vec3&) { return 330.0; });

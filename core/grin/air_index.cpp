@@ -121,6 +121,7 @@ double birch_downs_index(double lambda_um, const AirState& s) {
 
 double gladstone_dale_index(double K, double rho) { return 1.0 + K * rho; }
 
-double gladstone_dale_refractivity_at(double ref, double T_ref, double T) { return ref * T_ref / T; }
+double gladstone_dale_refractivity(double ref, double q) { return ref * q; }
+double gladstone_dale_refractivity_at(double ref, double T_ref, double T) { return gladstone_dale_refractivity(ref, T_ref / T); }
 
 }  // namespace refract::grin

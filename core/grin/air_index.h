@@ -113,8 +113,11 @@ double birch_downs_index(double lambda_um, const AirState& s);
 // ---------------------------------------------------------------------------------------
 // Gladstone–Dale (1863): n − 1 = K ρ, K in m³/kg, ρ in kg/m³.
 double gladstone_dale_index(double K_m3_per_kg, double density_kg_per_m3);
-// The same law for air heated or cooled at constant pressure (an ideal gas, ρ ∝ 1/T): the
-// refractivity at T from that at a reference temperature, n(T) − 1 = (n_ref − 1)·T_ref/T.
+// The same law as a ratio: the refractivity of air at density ratio q = ρ/ρ_ref from the
+// reference air's, n − 1 = (n_ref − 1)·q (linear in q, so its gradient is (n_ref − 1)∇q).
+double gladstone_dale_refractivity(double reference_refractivity, double density_ratio);
+// For air heated or cooled at constant pressure (an ideal gas, ρ ∝ 1/T, so q = T_ref/T):
+// the refractivity at T from that at a reference temperature, n(T) − 1 = (n_ref − 1)·T_ref/T.
 double gladstone_dale_refractivity_at(double reference_refractivity, double reference_temperature_K,
                                       double temperature_K);
 

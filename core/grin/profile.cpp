@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include <refract/core/grin/air_index.h>
 #include <refract/core/grin/check.h>
 #include <refract/core/spectrum/dispersion.h>
 
@@ -83,8 +84,10 @@ IndexGradient index_and_gradient(const SampledGrid& p, const Vec3& x, double l) 
     const SplineValue s = tricubic_bspline(*p.coefficients, p.dims, (x - p.origin).cwiseQuotient(p.spacing));
     const Vec3 grad = s.gradient.cwiseQuotient(p.spacing);
     if (p.quantity == GridQuantity::index) return {s.value, grad};
-    const double r = reference_refractivity(p, l);  // n − 1 = (n_ref − 1)·q, Gladstone–Dale
-    return {1.0 + r * (p.relative ? s.value - 1.0 : s.value), r * grad};
+    // Gladstone–Dale on the density ratio q (relative: the excess q − 1 over the reference
+    // air's); the law is linear in q, so the gradient is (n_ref − 1)∇q.
+    const double r = reference_refractivity(p, l);
+    return {1.0 + gladstone_dale_refractivity(r, p.relative ? s.value - 1.0 : s.value), r * grad};
 }
 
 // ---------------------------------------------------------------------------------------
