@@ -149,6 +149,27 @@ std::optional<Hit> HitSearch::intersect_object(size_t k, const Ray& ray, double 
     return refract::intersect(order_[k]->shape, ray, t_min, t_max);
 }
 
+std::optional<SurfaceHit> HitSearch::first_on(const Ray& ray, double length, const std::vector<int>& objects) const {
+    std::optional<Hit> best;
+    size_t best_k = 0;
+    for (const int object : objects) {
+        const size_t k = order_of_[static_cast<size_t>(object)];
+        if (const auto h = intersect_object(k, ray, 0.0, best ? best->t : length)) {
+            if (!(h->t <= length)) continue;
+            best = h;
+            best_k = k;
+        }
+    }
+    if (!best) return std::nullopt;
+    SurfaceHit out;
+    out.hit = *best;
+    out.object = order_[best_k];
+    out.material = &scene_.materials[static_cast<size_t>(out.object->material)];
+    out.entering = best->normal.dot(ray.dir) < 0;
+    out.normal = out.entering ? best->normal : Vec3(-best->normal);
+    return out;
+}
+
 bool HitSearch::list_inverts(size_t k, const Ray& ray, const RayOrigin& from) const {
     const std::int32_t object = static_cast<std::int32_t>(order_[k] - scene_.objects.data());
     const bool carried = from.inverted && from.object == object;

@@ -77,6 +77,12 @@ public:
         return {static_cast<std::int32_t>(h.object - scene_.objects.data()), h.hit.facet, h.inverted};
     }
 
+    // The nearest hit of a segment of `length` along unit ray.dir on the objects `objects`
+    // (indices into Scene::objects) with 0 ≤ t ≤ length: no t_min, since the segment's start
+    // may lie any distance from a surface (the chords of a curved ray, SceneTracer::curve);
+    // otherwise as intersect() reports a hit (normal on the incident side).
+    std::optional<SurfaceHit> first_on(const Ray& ray, double length, const std::vector<int>& objects) const;
+
     // A shadow ray's nearest blocker with t_min < t < t_max, leaving `from` (none: a point
     // on an opaque surface): the objects that cast shadows (emitters do not, as POV-Ray's
     // no_shadow highlights). `stats`: where facet-local segments are counted (null: not).

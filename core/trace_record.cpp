@@ -128,8 +128,7 @@ private:
         if (!m) return;
         grin::Settings st = m->settings;
         st.record_path = true;
-        const grin::Result r = grin::advance(m->profile, m->region, e.ray.origin, departure,
-                                             (nm_ > 0 ? nm_ : spectrum::fraunhofer::D) * 1e-3, st);
+        const grin::Result r = tracer_.curve(*m, Ray{e.ray.origin, departure}, nm_, st);
         for (const grin::PathSample& p : r.path) s.path.push_back(p.x);
     }
 

@@ -1,5 +1,6 @@
 #include <refract/core/tracer.h>
 
+#include <refract/core/hit_search.h>
 #include <refract/core/integrators/integrator.h>
 
 namespace refract {
@@ -22,6 +23,46 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceOptions& options)
 
 SceneTracer::~SceneTracer() = default;
 
+namespace {
+
+// The objects inside a medium as the integrator's obstacles: the nearest hit on them
+// along each chord, from its very start (HitSearch::first_on). The last hit found is kept:
+// the crossing the integrator reports.
+class InsideObstacles final : public grin::Obstacles {
+public:
+    InsideObstacles(const HitSearch& search, const Scene& scene, const grin::Medium& m)
+        : search_(search), scene_(scene), medium_(m) {}
+    std::optional<grin::ObstacleHit> first(const Vec3& a, const Vec3& b) const override {
+        const Vec3 d = b - a;
+        const double length = d.norm();
+        if (!(length > 0)) return std::nullopt;
+        const auto h = search_.first_on(Ray{a, d / length}, length, medium_.inside);
+        if (!h) return std::nullopt;
+        const int k = static_cast<int>(h->object - scene_.objects.data());
+        last = *h;
+        return grin::ObstacleHit{h->hit.t / length, k};
+    }
+    mutable std::optional<SurfaceHit> last;
+
+private:
+    const HitSearch& search_;
+    const Scene& scene_;
+    const grin::Medium& medium_;
+};
+
+}  // namespace
+
+grin::Result SceneTracer::curve(const grin::Medium& m, const Ray& ray, double nm, grin::Settings settings,
+                                std::optional<SurfaceHit>* inside) const {
+    const double lambda_um = (nm > 0 ? nm : spectrum::fraunhofer::D) * 1e-3;
+    if (m.inside.empty()) return grin::advance(m.profile, m.region, ray.origin, ray.dir, lambda_um, settings);
+    InsideObstacles obstacles(*search_, scene_, m);
+    settings.obstacles = &obstacles;
+    grin::Result r = grin::advance(m.profile, m.region, ray.origin, ray.dir, lambda_um, settings);
+    if (inside && r.status == grin::Status::met_obstacle) *inside = obstacles.last;
+    return r;
+}
+
 std::optional<SurfaceHit> SceneTracer::through(const grin::Medium& m, Ray& ray, double nm, RenderStats& stats,
                                                Vec3* frame) const {
     grin::Settings settings = m.settings;
@@ -29,14 +70,25 @@ std::optional<SurfaceHit> SceneTracer::through(const grin::Medium& m, Ray& ray, 
         const Vec3 across = *frame - frame->dot(ray.dir) * ray.dir;
         settings.frame = across.norm() > 1e-9 ? across : ray.dir.unitOrthogonal();
     }
-    const grin::Result r = grin::advance(m.profile, m.region, ray.origin, ray.dir,
-                                         (nm > 0 ? nm : spectrum::fraunhofer::D) * 1e-3, settings);
+    std::optional<SurfaceHit> inside;
+    const grin::Result r = curve(m, ray, nm, settings, &inside);
     if (frame) *frame = r.exit_frame;
     ++stats.grin_segments;
     stats.grin_evaluations += static_cast<std::uint64_t>(r.evaluations);
     if (r.status == grin::Status::budget_exhausted) {
         ++stats.grin_exhausted;
         return std::nullopt;
+    }
+    if (r.status == grin::Status::met_obstacle) {
+        // A surface inside the medium: its own hit (object, facet, outward normal), at the
+        // crossing's point, reached after the curved length along the arrival direction.
+        SurfaceHit h = *inside;
+        h.hit.t = r.length;
+        h.hit.point = r.exit_point;
+        h.entering = h.hit.normal.dot(r.exit_dir) < 0;
+        h.normal = h.entering ? h.hit.normal : Vec3(-h.hit.normal);
+        ray.dir = r.exit_dir;
+        return h;
     }
     const Object& o = scene_.objects[static_cast<size_t>(m.object)];
     SurfaceHit h;

@@ -62,6 +62,12 @@ public:
     }
     std::optional<SurfaceHit> through(const grin::Medium& m, Ray& ray, double nm, RenderStats& stats,
                                       Vec3* frame = nullptr) const;
+    // The integration behind through(): grin::advance from ray.origin along ray.dir with
+    // `settings`, the medium's inside objects (Medium::inside) as its obstacles; with
+    // `inside`, the hit on the one met (Status::met_obstacle). `trace` records a curved
+    // path by the same call.
+    grin::Result curve(const grin::Medium& m, const Ray& ray, double nm, grin::Settings settings,
+                       std::optional<SurfaceHit>* inside = nullptr) const;
     bool graded() const { return !media_.empty(); }
 
     bool packets() const { return packets_; }

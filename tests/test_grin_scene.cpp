@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include <refract/core/far_field.h>
+#include <refract/core/grin/atmosphere.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
 #include <refract/core/trace_record.h>
@@ -142,7 +143,8 @@ TEST_CASE("Gradient-index media: impossible input is refused naming the file and
     json inside = luneburg_scene(1e-9);
     inside["objects"].push_back(json{{"type", "sphere"}, {"center", {0, 0, 0.2}}, {"radius", 0.1},
                                      {"material", {{"type", "dielectric"}, {"ior", 1.5}}}});
-    CHECK_THAT(error(inside), Catch::Contains("g.json: /objects/1: reaches into the gradient-index medium of /objects/0"));
+    CHECK_THAT(error(inside), Catch::Contains("g.json: /objects/1: reaches into the gradient-index medium of /objects/0") &&
+                                      Catch::Contains("only lit or emitting surfaces"));
 
     json rod = luneburg_scene(1e-9);
     rod["materials"]["lens"]["profile"] = {{"kind", "parabolic-rod"}, {"axis", {0, 0, 1}}, {"n0", 1.5}, {"A", 4}};
@@ -227,4 +229,89 @@ TEST_CASE("A dispersive gradient-index medium: each wavelength's curved ray is t
     double sum = 0;
     for (double v : r.image.rgb) sum += v;
     CHECK(std::isfinite(sum));
+}
+
+TEST_CASE("Objects inside a gradient-index medium: a ray in Maxwell's fish-eye ends on a diffuse plane where its "
+          "circle meets the plane",
+          "[grin]") {
+    // n = 2 / (1 + r²) inside the unit sphere (1 at its surface: no refraction there). A ray
+    // entering at P = (b, 0, −s), s = √(1 − b²), along +z follows the circle through P and its
+    // conjugate point −P: centre (−s²/b, 0, −s), radius 1/b. A diffuse plane z = 0.3 inside
+    // ends it where that circle meets the plane.
+    json j = json::parse(R"({
+      "camera": {"location": [0, 0, -4], "look_at": [0, 0, 0], "angle": 40, "width": 16, "height": 12},
+      "materials": {"lens": {"type": "grin", "tolerance": 1e-12, "shadows": false,
+                             "profile": {"kind": "maxwell-fish-eye", "centre": [0, 0, 0], "n0": 2, "a": 1}},
+                    "card": {"type": "diffuse", "color": [0.8, 0.8, 0.8]}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "lens"},
+                  {"type": "plane", "normal": [0, 0, 1], "offset": 0.3, "material": "card"}],
+      "lights": [{"position": [0, 0, -5]}]
+    })");
+    const Scene scene = parse_scene(j, "fish.json");
+    for (const double b : {0.2, 0.5, 0.8}) {
+        const TraceRecord rec = trace_ray(scene, Ray{Vec3(b, 0, -3), Vec3(0, 0, 1)});
+        const TraceSegment* card = nullptr;
+        for (const TraceSegment& seg : rec.segments)
+            if (seg.event == "diffuse" && seg.parent == 0) card = &seg;
+        REQUIRE(card != nullptr);
+        const double s = std::sqrt(1 - b * b), cx = -s * s / b, rho = 1 / b;
+        const double x = cx + std::sqrt(rho * rho - (0.3 + s) * (0.3 + s));
+        INFO("b " << b << ": hit " << card->point.transpose() << ", circle meets the plane at x = " << x);
+        CHECK(std::abs(card->point.z() - 0.3) < 1e-12);   // on the plane: its own intersection
+        CHECK(std::abs(card->point.x() - x) < 1e-9);       // on the ray's circle
+        CHECK(std::abs(card->point.y()) < 1e-12);
+        CHECK(card->path.size() >= 3);                      // curved: its points recorded
+        CHECK((card->path.back() - card->point).norm() < 1e-15);
+    }
+    // A render of it is finite and the same on 1 and 2 threads.
+    RenderOptions one, two;
+    one.threads = 1;
+    two.threads = 2;
+    const RenderResult a = render(scene, one), c = render(scene, two);
+    CHECK(a.image.rgb == c.image.rgb);
+    CHECK(a.stats.grin_exhausted == 0);
+}
+
+TEST_CASE("Dip of the horizon through the standard atmosphere: the Earth inside the air, traced against "
+          "sqrt(2h(1 - k)/R)",
+          "[grin]") {
+    // An observer 10 m above a diffuse Earth inside a sphere of the 1976 standard air (the
+    // scene in metres). Rays below the dip meet the ground; the dip is found by bisection.
+    // Geometric optics: a ray's curvature is −(dn/dh)/n, the refraction coefficient
+    // k = −R (dn/dh)/n; near the ground the ray sees an Earth of radius R/(1 − k), so the
+    // dip is √(2h(1 − k)/R) (k about 0.17 for this air at 550 nm).
+    const double R = 6371e3, h = 10.0;
+    json j = json::parse(R"({
+      "camera": {"location": [0, 10, 0], "look_at": [1, 10, 0], "angle": 1, "width": 4, "height": 4},
+      "materials": {"air": {"type": "grin", "tolerance": 1e-10, "shadows": false, "profile": {"kind": "earth-atmosphere"}},
+                    "ground": {"type": "diffuse", "color": [0.3, 0.3, 0.3]}},
+      "objects": [{"type": "sphere", "center": [0, -6371000, 0], "radius": 6471000, "material": "air"},
+                  {"type": "sphere", "center": [0, -6371000, 0], "radius": 6371000, "material": "ground"}],
+      "lights": []
+    })");
+    const Scene scene = parse_scene(j, "earth.json");
+    const grin::Atmosphere air;
+    const grin::Atmosphere::Index at = air.index(h, 0.55);
+    const double k = -R * at.dn_dh / at.n;
+    const double predicted = std::sqrt(2 * h * (1 - k) / R), geometric = std::sqrt(2 * h / R);
+    auto meets_ground = [&](double dip) {
+        const Vec3 d(std::cos(dip), -std::sin(dip), 0);
+        const TraceRecord rec = trace_ray(scene, Ray{Vec3(0, h, 0), d}, 550.0);
+        for (const TraceSegment& seg : rec.segments)
+            if (seg.event == "diffuse") return true;
+        return false;
+    };
+    double lo = 0.5 * geometric, hi = 1.5 * geometric;
+    REQUIRE_FALSE(meets_ground(lo));
+    REQUIRE(meets_ground(hi));
+    for (int it = 0; it < 30; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (meets_ground(mid) ? hi : lo) = mid;
+    }
+    const double dip = 0.5 * (lo + hi);
+    INFO("k " << k << ", dip traced " << dip << " rad, predicted " << predicted << ", geometric " << geometric);
+    CHECK(k > 0.1);
+    CHECK(k < 0.25);
+    CHECK(dip < geometric);                                   // refraction lowers the dip
+    CHECK(std::abs(dip / predicted - 1) < 0.01);
 }

@@ -77,14 +77,20 @@ std::vector<Medium> media(const Scene& scene) {
         validate(md.profile, md.region, 0.36, 0.83, f + ": /materials/" + clip_echo(m.name) + "/profile");
         out.push_back(std::move(md));
     }
-    for (const Medium& md : out) {
+    for (Medium& md : out) {
         const double margin = 1e-9 * length_scale(md.region);
-        for (size_t k = 0; k < scene.objects.size(); ++k)
-            if (static_cast<int>(k) != md.object &&
-                std::visit([&](const auto& sh) { return overlaps(sh, md.region, margin); }, scene.objects[k].shape))
+        for (size_t k = 0; k < scene.objects.size(); ++k) {
+            if (static_cast<int>(k) == md.object ||
+                !std::visit([&](const auto& sh) { return overlaps(sh, md.region, margin); }, scene.objects[k].shape))
+                continue;
+            const Material& m = scene.materials[static_cast<size_t>(scene.objects[k].material)];
+            if (leaf_light(m).kind == LeafLight::Kind::None)
                 throw InputError(object_where(scene, k) + ": reaches into the gradient-index medium of " +
                                  object_where(scene, static_cast<size_t>(md.object)).substr(f.size() + 2) +
-                                 " (objects inside a gradient-index medium are not supported)");
+                                 " (only lit or emitting surfaces, such as \"diffuse\" or \"emissive\", can be "
+                                 "inside a medium; material '" + clip_echo(m.name) + "' is not one)");
+            md.inside.push_back(static_cast<int>(k));
+        }
     }
     return out;
 }

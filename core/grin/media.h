@@ -20,13 +20,17 @@ struct Medium {
     Region region;
     Profile profile;  // validated over the region
     Settings settings;
+    // The objects inside the region (indices into Scene::objects): lit or emitting surfaces
+    // (a material whose leaf_light is not None), which end a curved ray where it meets them.
+    std::vector<int> inside;
 };
 
 // The scene's media in object order. InputError, naming the file and the field, for a
 // shape with no inside (a plane, an open mesh, a hollow sphere, an unbounded polyhedron),
 // a profile whose index is not finite and > 0 over its region at 360–830 nm, and any
-// object overlapping a medium's region (another medium included): objects inside a
-// gradient-index medium are not supported.
+// object overlapping a medium's region that is not a lit or emitting surface (a dielectric,
+// a mirror, a metal or another medium: a ray leaving it would start inside the medium
+// with no index of its own there).
 std::vector<Medium> media(const Scene& scene);
 
 // The medium of `media` that a ray at `origin` along unit `dir` travels in: leaving the

@@ -127,6 +127,22 @@ constexpr KindEntry kKinds[] = {
              return tabulated_radial(r.vec3("centre", Vec3::Zero()), numbers("r"), numbers("n"),
                                      r.file() + ": " + r.path());
          }},
+        {"earth-atmosphere",
+         [](const JsonReader& r) -> Profile {
+             // The air over a spherical Earth of radius kEarthRadius_m centred at `centre`
+             // (default: the ground under the origin, y up), scene units metres.
+             r.only({"kind", "centre", "sea_level_temperature", "sea_level_pressure", "relative_humidity",
+                     "humidity_scale_height", "co2", "surface_delta_T", "surface_height"});
+             AtmosphereSpec spec;
+             spec.sea_level_temperature_K = r.number("sea_level_temperature", spec.sea_level_temperature_K);
+             spec.sea_level_pressure_Pa = r.number("sea_level_pressure", spec.sea_level_pressure_Pa);
+             spec.relative_humidity = r.number("relative_humidity", spec.relative_humidity);
+             spec.humidity_scale_height_m = r.number("humidity_scale_height", spec.humidity_scale_height_m);
+             spec.co2_ppm = r.number("co2", spec.co2_ppm);
+             spec.surface_delta_T_K = r.number("surface_delta_T", spec.surface_delta_T_K);
+             spec.surface_height_m = r.number("surface_height", spec.surface_height_m);
+             return EarthAtmosphere{r.vec3("centre", Vec3(0, -kEarthRadius_m, 0)), Atmosphere(spec, r.file() + ": " + r.path())};
+         }},
         {"grid", read_grid},
 };
 const KindEntry* kinds_begin() { return std::begin(kKinds); }

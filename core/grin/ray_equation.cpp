@@ -188,6 +188,68 @@ void finish(Result& r, const State<N>& y, const State<N>& f, Status status, long
     r.exit_frame = frame_of<N>(y, r.exit_dir);
 }
 
+// The first crossing of a step's dense output (θ from 0, the step's start, to 1) with the
+// surfaces inside (Settings::obstacles): the polyline of kObstacleChords chords in order,
+// then, in the first chord that meets one, bisection on θ (each time the chord from the
+// last point known before the crossing to the middle), and a last call on the final chord,
+// whose hit is reported: θ and the point there, on the surface.
+struct Crossing {
+    double theta;
+    Vec3 point;
+    int id;
+};
+template <int N>
+std::optional<Crossing> obstacle_crossing(const Obstacles& obs, const Step<N>& st) {
+    const auto pos = [&](double th) { return Vec3(st.at(th).template head<3>()); };
+    double lo = 0.0;
+    Vec3 a = pos(0.0);
+    for (int k = 1; k <= kObstacleChords; ++k) {
+        const double end = static_cast<double>(k) / kObstacleChords;
+        const Vec3 b = k == kObstacleChords ? Vec3(st.y1.template head<3>()) : pos(end);
+        std::optional<ObstacleHit> h = obs.first(a, b);
+        if (!h) {
+            lo = end;
+            a = b;
+            continue;
+        }
+        double hi = end;
+        Vec3 bh = b;
+        for (int it = 0; it < 40; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            const Vec3 m = pos(mid);
+            if (obs.first(a, m)) {
+                hi = mid;
+                bh = m;
+            } else {
+                lo = mid;
+                a = m;
+            }
+        }
+        if (const auto last = obs.first(a, bh))
+            return Crossing{lo + last->fraction * (hi - lo), a + last->fraction * (bh - a), last->id};
+        // Rounding: the final chord grazed past the surface; the chord of the whole piece,
+        // known to meet it, from the last point before.
+        if (const auto whole = obs.first(a, b))
+            return Crossing{lo + whole->fraction * (end - lo), a + whole->fraction * (b - a), whole->id};
+        return std::nullopt;
+    }
+    return std::nullopt;
+}
+
+// The ray ended on a surface inside: the state at the crossing from the step's dense
+// output (its direction, lengths and frame), the point the surface's own test gave.
+template <int N>
+Result met_obstacle(Result& res, Rhs<N>& f, const Step<N>& st, const Crossing& c, const Settings& s) {
+    const State<N> yc = st.at(c.theta);
+    const State<N> fc = f(yc);
+    ++res.steps;
+    finish<N>(res, yc, fc, Status::met_obstacle, f.evaluations);
+    res.exit_point = c.point;
+    res.obstacle = c.id;
+    if (s.record_path) res.path.push_back({c.point, res.exit_dir, res.exit_frame});
+    return res;
+}
+
 template <int N>
 Result advance_with(const Profile& profile, const Region& region, const Vec3& x0, const Vec3& dir0, double lambda_um,
                     const Settings& s) {
@@ -246,6 +308,9 @@ Result advance_with(const Profile& profile, const Region& region, const Vec3& x0
             }
             const double err = fixed ? 0.0 : error_norm<N>(end.err, y, end.y1, s);
             if (fixed || (on_boundary && err <= 1.0)) {
+                if (s.obstacles)
+                    if (const auto c = obstacle_crossing<N>(*s.obstacles, end))
+                        return met_obstacle<N>(res, f, end, *c, s);
                 ++res.steps;
                 if (s.record_path) res.path.push_back(sample<N>(end.y1));
                 finish<N>(res, end.y1, end.k7, Status::left_region, f.evaluations);
@@ -267,6 +332,8 @@ Result advance_with(const Profile& profile, const Region& region, const Vec3& x0
                 continue;
             }
         }
+        if (s.obstacles)
+            if (const auto c = obstacle_crossing<N>(*s.obstacles, st)) return met_obstacle<N>(res, f, st, *c, s);
         ++res.steps;
         y = st.y1;
         k1 = st.k7;

@@ -11,6 +11,7 @@
 // direction until the ray leaves the region (the crossing found by root finding on the
 // step's dense output, then polished on the true step) or the step budget runs out. With
 // Settings::frame it also carries a polarisation frame along the ray (Rytov's law).
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,6 +20,19 @@
 #include <refract/core/grin/region.h>
 
 namespace refract::grin {
+
+// Surfaces inside the medium (the leaf objects a scene places in it, core/grin/media.h):
+// the first crossing of the straight segment from a to b, as the fraction of the way along
+// it (in [0, 1]) and the caller's id of the surface; none when the segment meets none.
+struct ObstacleHit {
+    double fraction = 0;
+    int id = -1;
+};
+class Obstacles {
+public:
+    virtual ~Obstacles() = default;
+    virtual std::optional<ObstacleHit> first(const Vec3& a, const Vec3& b) const = 0;
+};
 
 struct Settings {
     // Each step's error estimate e_i of each component y_i of (r, T, optical path,
@@ -36,11 +50,20 @@ struct Settings {
     // normalised; one parallel to dir0 or not finite is a std::invalid_argument. Zero: off
     // (the integrator then runs as without it, to the bit).
     Vec3 frame = Vec3::Zero();
+    // Non-null: surfaces inside the region that end the ray where it first meets one
+    // (Status::met_obstacle). Each accepted step's dense output is tested as a polyline of
+    // kObstacleChords chords, in order; in the first chord that meets a surface the crossing
+    // is found by bisection on the dense output (each half tested as a chord), to 2^-40 of
+    // the chord. The last first() call that returns a hit is the crossing reported (its
+    // caller may keep what it found there). Null: the integrator runs as without it, to the bit.
+    const Obstacles* obstacles = nullptr;
 };
+inline constexpr int kObstacleChords = 4;
 
 enum class Status {
-    left_region,      // the exit point is on the region's boundary
-    budget_exhausted  // max_steps tried: the ray ends where it is (lost light)
+    left_region,       // the exit point is on the region's boundary
+    budget_exhausted,  // max_steps tried: the ray ends where it is (lost light)
+    met_obstacle       // the exit point is on a surface inside (Settings::obstacles), Result::obstacle
 };
 
 struct PathSample {
@@ -63,6 +86,7 @@ struct Result {
     // exit_dir (a Stokes vector in the start's frame (frame, dir0 × frame) is the same in
     // (exit_frame, exit_dir × exit_frame)); zero otherwise.
     Vec3 exit_frame = Vec3::Zero();
+    int obstacle = -1;  // met_obstacle: the surface's id (ObstacleHit::id)
     std::vector<PathSample> path;  // with Settings::record_path
 };
 
