@@ -165,7 +165,7 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
     d.dispersion = disp;
     scene_->source = "gem metrics";
     scene_->materials.push_back({"gem", d});
-    scene_->objects.push_back({"gem", gem.solid, 0});
+    scene_->objects.push_back({"gem", tracing_shape(gem), 0});
     exact_ = o.exact_polarisation;
     scene_->settings.requested_polarisation = exact_ ? PolarisationModel::Exact : PolarisationModel::Natural;
     scene_->settings.threshold = threshold_ = o.threshold;
@@ -185,6 +185,9 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
         }
         plane_kind_.push_back(static_cast<int>(j));
     }
+    std::vector<int> hit_kind;  // per facet index a hit reports
+    for (const int f : hit_facets(gem)) hit_kind.push_back(plane_kind_[static_cast<size_t>(f)]);
+    plane_kind_ = std::move(hit_kind);
 }
 
 GemTracer::~GemTracer() = default;
