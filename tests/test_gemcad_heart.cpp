@@ -84,6 +84,10 @@ TEST_CASE("The heart is its convex preform less the notch: closed, convex except
     const Gem& g = d.gem;
     CHECK_FALSE(g.convex);
     CHECK(d.cleft_facets == 3);
+    CHECK(g.facets.size() == 71);  // 69 listed: G 48 and C1 48 each cut in two by the notch
+    CHECK(d.planes == 69);
+    CHECK(g.mesh.vertices.size() == 138);
+    CHECK(d.volume == Approx(1.23759959).epsilon(1e-8));
 
     // The volumes built independently: the preform alone, and the notch's part of it as a
     // convex design of its own.
