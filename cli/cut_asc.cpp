@@ -49,6 +49,12 @@ void run(const AscArgs& a) {
         j["facets_listed"] = d.planes;
         j["vertices"] = d.gem.mesh.vertices.size();
         j["volume"] = d.volume;
+        j["convex"] = d.gem.convex;
+        if (!d.gem.convex) {
+            j["preform_volume"] = d.preform_volume;
+            j["notch_volume"] = d.notch_volume;
+            j["cleft_facets"] = d.cleft_facets;
+        }
         j["width"] = W;
         j["length"] = d.length;
         j["height"] = d.height;
@@ -62,8 +68,12 @@ void run(const AscArgs& a) {
     std::printf("GemCad design %s: gear %d, symmetry %d%s, %zu tiers", name.c_str(), design.gear, design.symmetry,
                 design.mirror ? " with mirror" : "", design.tiers.size());
     if (design.index > 0) std::printf(", refractive index %.6g", design.index);
-    std::printf("\nfacets: %zu (of %d listed), vertices: %zu, closed and convex\n", d.gem.facets.size(), d.planes,
-                d.gem.mesh.vertices.size());
+    std::printf("\nfacets: %zu (of %d listed), vertices: %zu, %s\n", d.gem.facets.size(), d.planes,
+                d.gem.mesh.vertices.size(),
+                d.gem.convex ? "closed and convex" : "closed, convex except at its cleft");
+    if (!d.gem.convex)
+        std::printf("cleft: %d facets; the convex preform's volume %.10g less the notch's %.10g\n", d.cleft_facets,
+                    d.preform_volume, d.notch_volume);
     std::printf("width W %.10g, length %.10g (L/W %.6f), height %.10g (H/W %.6f)\n", W, d.length, d.length / W,
                 d.height, d.height / W);
     std::printf("volume %.10g (V/W^3 %.6f)\n", d.volume, d.volume / (W * W * W));

@@ -11,7 +11,8 @@ namespace refract::gem_metrics {
 bool shows_nail_head(const Metric& m) { return m.value >= kNailHeadThreshold; }
 bool shows_fish_eye(const Metric& m) { return m.value >= kFishEyeThreshold; }
 
-Detectors::Detectors(const Gem& gem) : gem_(&gem) {
+Detectors::Detectors(const Gem& gem)
+    : stone_(std::make_shared<const Shape>(tracing_shape(gem))), hit_facet_(hit_facets(gem)) {
     double best = 1 - 1e-9;
     for (size_t i = 0; i < gem.facets.size(); ++i) {
         const double nz = gem.facets[i].plane.normal.z();
@@ -29,9 +30,9 @@ Detectors::Detectors(const Gem& gem) : gem_(&gem) {
 
 void Detectors::add(const Ray& eye_ray, double head_weight, double girdle_weight) {
     if (table_ < 0) return;
-    const auto hit = intersect(gem_->solid, eye_ray, 0.0, 1e30);
+    const auto hit = intersect(*stone_, eye_ray, 0.0, 1e30);
     if (!hit) return;
-    const bool on_table = hit->facet == table_;
+    const bool on_table = hit_facet_[static_cast<size_t>(hit->facet)] == table_;
     if (!(on_table && std::hypot(hit->point.x(), hit->point.y()) < kNailHeadZone * table_radius_))
         rest_head_.add(head_weight);
     if (on_table) table_girdle_.add(girdle_weight);

@@ -24,6 +24,8 @@
 // Thresholds: docs/gem-metrics.md gives the measured values behind them (the trade's
 // limits, pavilion steeper than about 42–43° for a nail-head and shallower than about 39°
 // for a fish-eye, are where the detectors cross them under the default observer).
+#include <memory>
+#include <vector>
 #include <refract/experiments/gem_metrics.h>
 #include <refract/geometry/ray.h>
 
@@ -58,7 +60,8 @@ public:
     Metric fish_eye() const;
 
 private:
-    const Gem* gem_;
+    std::shared_ptr<const Shape> stone_;  // tracing_shape(gem)
+    std::vector<int> hit_facet_;          // hit_facets(gem)
     int table_ = -1;
     double table_radius_ = 0, table_z_ = 0;
     Mean centre_head_, rest_head_, table_girdle_;

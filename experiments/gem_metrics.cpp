@@ -30,7 +30,7 @@ struct EyeSample {
 };
 // `turn` (the stone tilted, world = turn · stone frame): the viewer drawn in the world and
 // the ray built in the stone's frame, so that it meets the tilted stone.
-EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg, double frame,
+EyeSample eye_sample(const Shape& stone, std::uint64_t seed, std::uint64_t stream, int i, double cone_deg, double frame,
                      const Eigen::Matrix3d* turn = nullptr) {
     Rng rng(seed, stream, static_cast<std::uint64_t>(i));
     Vec3 v(0, 0, 1);
@@ -44,7 +44,7 @@ EyeSample eye_sample(const Gem& gem, std::uint64_t seed, std::uint64_t stream, i
     for (;;) {
         const double r = 1.1 * frame * std::sqrt(rng.uniform()), phi = 2 * M_PI * rng.uniform();
         const Ray ray{r * std::cos(phi) * a + r * std::sin(phi) * b + 4.0 * frame * v, -v};
-        if (intersect(gem.solid, ray, 0.0, 1e30)) return {ray, v, rng};
+        if (intersect(stone, ray, 0.0, 1e30)) return {ray, v, rng};
     }
 }
 
@@ -86,6 +86,7 @@ std::vector<double> rotations(Rng& rng, int K) {
 
 GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     GemTracer t(gem, o);  // validates the options
+    const Shape stone = tracing_shape(gem);  // what an eye ray must meet
     GemMetrics m;
     const int W = t.bands();
     std::vector<GemTracer::Exit> exits;
@@ -113,7 +114,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> by_kind(t.kinds().size(), 0.0);
     for (int i = 0; i < N; ++i) {
         const int band = t.band_by_luminance(golden(i));
-        const EyeSample eye = eye_sample(gem, o.seed, 1, i, o.viewer_cone_deg, o.frame);
+        const EyeSample eye = eye_sample(stone, o.seed, 1, i, o.viewer_cone_deg, o.frame);
         const auto tr = t.trace(eye.ray, band, exits);
         double returned = 0, pav = 0, girdle = 0, head = 0;
         std::fill(ret_also.begin(), ret_also.end(), 0.0);
@@ -165,7 +166,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
                 Eigen::AngleAxisd(observer.tilts_deg[k] * M_PI / 180.0, Vec3(std::cos(az), std::sin(az), 0))
                     .toRotationMatrix();
             const Vec3 up = turn.transpose() * kUp;  // the world's vertical in the stone's frame
-            const EyeSample te = eye_sample(gem, o.seed, 8 + k, i, o.viewer_cone_deg, o.frame, &turn);
+            const EyeSample te = eye_sample(stone, o.seed, 8 + k, i, o.viewer_cone_deg, o.frame, &turn);
             t.trace(te.ray, band, exits);
             for (const auto& e : exits)
                 if (e.kind >= 0 && t.kind_regions()[static_cast<size_t>(e.kind)] == Region::Crown)
@@ -225,7 +226,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> r(static_cast<size_t>(W)), coloured(static_cast<size_t>(W), 0.0);
     const Eigen::Matrix3d none = Eigen::Matrix3d::Identity();
     for (int i = 0; i < NF; ++i) {
-        EyeSample eye = eye_sample(gem, o.seed, 2, i, o.viewer_cone_deg, o.frame);
+        EyeSample eye = eye_sample(stone, o.seed, 2, i, o.viewer_cone_deg, o.frame);
         for (int b = 0; b < W; ++b) {
             t.trace(eye.ray, b, exits);
             band_probes[static_cast<size_t>(b)].fill(exits, none);
@@ -258,7 +259,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::array<Probes, 3> tilt_probes;
     Mean scint;
     for (int i = 0; i < NS; ++i) {
-        EyeSample eye = eye_sample(gem, o.seed, 3, i, o.viewer_cone_deg, o.frame);
+        EyeSample eye = eye_sample(stone, o.seed, 3, i, o.viewer_cone_deg, o.frame);
         const int band = t.band_by_luminance(golden(i));
         for (size_t k = 0; k < 3; ++k) {
             // The stone turned by tilts[k], viewer and lights fixed: in the stone's frame the

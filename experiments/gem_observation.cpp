@@ -165,7 +165,7 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
     d.dispersion = disp;
     scene_->source = "gem metrics";
     scene_->materials.push_back({"gem", d});
-    scene_->objects.push_back({"gem", gem.solid, 0});
+    scene_->objects.push_back({"gem", tracing_shape(gem), 0});
     exact_ = o.exact_polarisation;
     scene_->settings.requested_polarisation = exact_ ? PolarisationModel::Exact : PolarisationModel::Natural;
     scene_->settings.threshold = threshold_ = o.threshold;
@@ -174,6 +174,7 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
 
     // A kind is a facet kind in one region (a design may give a crown and a pavilion tier
     // the same name).
+    std::vector<int> kind_of_facet;
     for (size_t i = 0; i < gem.solid.labels.size(); ++i) {
         const std::string k = facet_kind(gem.solid.labels[i]);
         const Region r = region_of_facet(k, gem.solid.planes[i].normal);
@@ -183,8 +184,9 @@ GemTracer::GemTracer(const Gem& gem, const MetricOptions& o)
             kinds_.push_back(k);
             regions_.push_back(r);
         }
-        plane_kind_.push_back(static_cast<int>(j));
+        kind_of_facet.push_back(static_cast<int>(j));
     }
+    for (const int f : hit_facets(gem)) hit_kind_.push_back(kind_of_facet[static_cast<size_t>(f)]);
 }
 
 GemTracer::~GemTracer() = default;
@@ -214,12 +216,12 @@ template <class P>
 struct ExitEnds {
     using Entry = TreeEntryT<P>;
     using Walker = RayTreeWalkerT<P>;
-    const std::vector<int>& plane_kind;
+    const std::vector<int>& hit_kind;
     double n, lambda;
     std::vector<GemTracer::Exit>& exits;
 
     void background(const Entry& e) {
-        const int kind = e.from.facet < 0 ? -1 : plane_kind[static_cast<size_t>(e.from.facet)];
+        const int kind = e.from.facet < 0 ? -1 : hit_kind[static_cast<size_t>(e.from.facet)];
         exits.push_back({e.ray.dir, e.weight.mean() * throughput(e.pol), kind});
     }
     void leaf(const Entry&, const SurfaceHit&) {}
@@ -256,7 +258,7 @@ GemTracer::Trace GemTracer::trace_with(const Ray& ray, int band, std::vector<Exi
     root.band = static_cast<std::int16_t>(band);
     root.pol = root_payload<P>(ray);
     list.push_back(root);
-    ExitEnds<P> ends{plane_kind_, index(band), wavelength(band), exits};
+    ExitEnds<P> ends{hit_kind_, index(band), wavelength(band), exits};
     walker.walk(list, ends);
     return {stats.lost_threshold + stats.lost_depth + stats.lost_limits};
 }

@@ -129,7 +129,8 @@ private:
     std::vector<double> wavelengths_, index_, luminance_;
     std::vector<std::string> kinds_;   // distinct facet kinds in plane order of first use
     std::vector<Region> regions_;      // per kind
-    std::vector<int> plane_kind_;      // per plane of the solid
+    std::vector<int> hit_kind_;        // per facet index a hit reports (hit_facets: a plane of
+                                       // the solid, or a triangle of a stone with a cleft)
     bool exact_ = true;
     double threshold_ = 0;
     int max_depth_ = 0;

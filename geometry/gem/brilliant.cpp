@@ -9,6 +9,8 @@
 #include <refract/geometry/constants.h>
 #include <cmath>
 #include <map>
+#include <stdexcept>
+#include <variant>
 
 #include <refract/geometry/error.h>
 #include <refract/geometry/gem/brilliant.h>
@@ -238,6 +240,31 @@ Gem build_brilliant(const BrilliantCut& cut) {
 
     exact::append_facets(gem, con.planes, con.labels, loops);
     return gem;
+}
+
+Shape tracing_shape(const Gem& gem) {
+    if (gem.convex) return gem.solid;
+    return gem.mesh;
+}
+
+namespace {
+// The facet of each hit index, by the kind of shape that traces the gem (hit_facets).
+std::vector<int> facet_of_hit(const ConvexPolyhedron& c, const Gem&) {
+    std::vector<int> f(c.planes.size());
+    for (size_t i = 0; i < f.size(); ++i) f[i] = static_cast<int>(i);
+    return f;
+}
+std::vector<int> facet_of_hit(const TriangleMesh&, const Gem& gem) { return gem.triangle_facet; }
+std::vector<int> facet_of_hit(const Sphere&, const Gem&) {
+    throw std::logic_error("a gem is traced as a plane set or a mesh, not a sphere");
+}
+std::vector<int> facet_of_hit(const Plane&, const Gem&) {
+    throw std::logic_error("a gem is traced as a plane set or a mesh, not a plane");
+}
+}  // namespace
+
+std::vector<int> hit_facets(const Gem& gem) {
+    return std::visit([&](const auto& s) { return facet_of_hit(s, gem); }, tracing_shape(gem));
 }
 
 }  // namespace refract

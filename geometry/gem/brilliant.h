@@ -82,7 +82,19 @@ struct Gem {
     std::vector<int> triangle_facet; // facet index of each mesh triangle
     BrilliantProportions measured;   // measured back from the exact polyhedron
     std::string description;         // written files' header comment; empty: the brilliant's
+    // false for a stone with a cleft ground into it (gemcad.h, cleft tiers): not the
+    // intersection of its facets' half-spaces; `solid` then lists the facets' planes and
+    // labels only, and `mesh` (closed, outward, triangle_facet labelled) is the stone.
+    bool convex = true;
 };
+
+// The shape that traces the stone: the plane set `solid` for a convex gem (the exact cut,
+// as always), the closed mesh for a stone with a cleft; a hit's facet is a plane index in
+// the one and a triangle index (triangle_facet gives its facet) in the other.
+Shape tracing_shape(const Gem& gem);
+// The gem facet of each facet index a hit of tracing_shape(gem) reports: each plane its own
+// facet for the plane set, triangle_facet for the mesh.
+std::vector<int> hit_facets(const Gem& gem);
 
 // Validates, then builds the cut exactly (CGAL) and converts to doubles at the end.
 Gem build_brilliant(const BrilliantCut& cut);

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <variant>
 #include <unistd.h>
 
 #include <refract/geometry/atomic_file.h>
@@ -85,14 +87,41 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-std::string pov_gem_declaration(const Gem& gem, const std::string& name) {
+namespace {
+
+// The #declare's body by the kind of shape that traces the gem (tracing_shape): an
+// intersection of its facets' planes, or the closed mesh of a stone with a cleft.
+std::string pov_body(const ConvexPolyhedron&, const Gem& gem, const std::string& name) {
     std::ostringstream s;
-    s << "// " << header_comment(gem) << "\n#declare " << name << " = intersection {\n";
+    s << "#declare " << name << " = intersection {\n";
     for (const GemFacet& f : gem.facets)
         s << "  plane { <" << xyz(f.plane.normal, ", ") << ">, " << g17(f.plane.offset) << " }  // " << f.label
           << "\n";
     s << "}\n";
     return s.str();
+}
+std::string pov_body(const TriangleMesh& m, const Gem&, const std::string& name) {
+    std::ostringstream s;
+    s << "#declare " << name << " = mesh {\n";
+    for (const auto& t : m.triangles)
+        s << "  triangle { <" << xyz(m.vertices[static_cast<size_t>(t[0])], ", ") << ">, <"
+          << xyz(m.vertices[static_cast<size_t>(t[1])], ", ") << ">, <" << xyz(m.vertices[static_cast<size_t>(t[2])], ", ")
+          << "> }\n";
+    s << "  inside_vector <0, 0, 1>\n}\n";
+    return s.str();
+}
+std::string pov_body(const Sphere&, const Gem&, const std::string&) {
+    throw std::logic_error("a gem is traced as a plane set or a mesh, not a sphere");
+}
+std::string pov_body(const Plane&, const Gem&, const std::string&) {
+    throw std::logic_error("a gem is traced as a plane set or a mesh, not a plane");
+}
+
+}  // namespace
+
+std::string pov_gem_declaration(const Gem& gem, const std::string& name) {
+    return "// " + header_comment(gem) + "\n" +
+           std::visit([&](const auto& shape) { return pov_body(shape, gem, name); }, tracing_shape(gem));
 }
 
 void write_gem(const Gem& gem, const std::string& path) {

@@ -105,6 +105,14 @@ std::string GemcadTier::name(int tier_number) const {
     return "tier " + std::to_string(tier_number);
 }
 
+bool is_cleft_tier(const GemcadTier& tier, int tier_number) {
+    const std::string n = tier.name(tier_number);
+    if (n.size() < 2 || n.compare(0, 2, "CL") != 0) return false;
+    for (std::size_t i = 2; i < n.size(); ++i)
+        if (n[i] < '0' || n[i] > '9') return false;
+    return true;
+}
+
 GemcadDesign parse_gemcad(const std::string& text, const std::string& source) {
     GemcadDesign d;
     d.source = source;

@@ -29,6 +29,14 @@
 // Round Brilliant has the girdle at 1.0265, the table at 0.3645), so refract keeps them and
 // reports the width W (the trade's unit, the narrowest caliper width of the outline seen
 // from above); a scene's "diameter" scales the stone so that W equals it.
+//
+// The cleft (refract's convention, docs/gems.md "The heart"): a tier whose name is CL, or CL
+// followed by digits (CL1, CL2, ...), is ground in after the convex preform that the other
+// tiers cut. Its facets are written like any facet (n·x <= DIST keeps the stone's side, n the
+// outward normal of the facet on the finished stone), but the stone keeps what lies inside
+// at least one cleft facet: the notch removed is the convex region outside every cleft facet,
+// stone = preform ∩ (∪ cleft facets' inner half-spaces). GemCad itself stores such a stone's
+// facets the same way; only the name tells refract which facets cut the notch.
 #include <string>
 #include <vector>
 
@@ -46,6 +54,9 @@ struct GemcadTier {
     int line = 0;                      // line number in the file (1-based), 0 if built
     std::string name(int tier_number) const;  // first facet name, else "tier N"
 };
+
+// Whether the tier is a cleft tier: its name is CL or CL followed by digits.
+bool is_cleft_tier(const GemcadTier& tier, int tier_number);
 
 struct GemcadDesign {
     std::string source;                // file name for messages
@@ -76,11 +87,22 @@ struct DesignGem {
     double width = 0;        // W: narrowest caliper width of the outline (seen along z)
     double length = 0;       // extent perpendicular to the width direction
     double height = 0;       // extent along z
+    // With cleft tiers (gem.convex false): the convex preform's exact volume and the notch's
+    // (the preform's part outside every cleft facet); volume = preform_volume − notch_volume.
+    // Without: preform_volume = volume, notch_volume = 0.
+    double preform_volume = 0;
+    double notch_volume = 0;
+    int cleft_facets = 0;    // facets of the finished stone on cleft planes
 };
 
 // Builds the design exactly; InputError "SOURCE: ..." when a tier cuts the whole stone away
 // (naming it), when the tiers leave it open (unbounded), or when the result fails the
-// closure/convexity check.
+// closure/convexity check. With cleft tiers the preform is built and checked so, then the
+// notch is removed exactly (CGAL's Nef polyhedra, gemcad_cleft.cpp) and the stone checked
+// closed (every edge of its triangles shared by two, in opposite directions; Euler
+// characteristic 2) and convex except at its cleft (every vertex inside every non-cleft
+// facet plane); InputError naming the cleft tier when the cleft removes nothing, removes
+// the whole stone, or cuts it in pieces.
 DesignGem build_design(const GemcadDesign& design);
 
 // The round brilliant as a design: one tier per facet kind (gear 96, fractional indices where

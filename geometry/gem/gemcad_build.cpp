@@ -1,6 +1,9 @@
 // A GemCad design built exactly (gemcad.h): every tier's facets become exact planes (their
 // double coefficients taken as exact numbers), the stone is their half-space intersection
 // (exact_hull.h, the brilliant's machinery), then it is checked closed and convex and measured.
+// A design with cleft tiers: that intersection of the other tiers is the preform, the notch
+// (the preform's part outside every cleft facet) is removed from it exactly (exact_cleft.h),
+// and the stone is checked closed and convex except at its cleft.
 #include <CGAL/Convex_hull_3/dual/halfspace_intersection_interior_point_3.h>
 
 #include <algorithm>
@@ -12,6 +15,7 @@
 
 #include <refract/geometry/error.h>
 #include <refract/geometry/format.h>
+#include <refract/geometry/gem/exact_cleft.h>
 #include <refract/geometry/gem/exact_hull.h>
 #include <refract/geometry/gem/gemcad.h>
 
@@ -28,16 +32,19 @@ struct Planes {
 
 std::string index_text(double i) { return format_shortest(i); }
 
-// The facets of tiers 1..upto, after the six planes of a box far outside every facet (so
-// that the intersection is bounded whatever the tiers are; a box face left on the stone
-// means the tiers do not close it).
-Planes design_planes(const GemcadDesign& d, std::size_t upto) {
+// The preform's tiers (every tier but the cleft's), or the cleft's alone.
+enum class Which { Preform, Cleft };
+
+// The facets of tiers 1..upto of one kind (Which), the preform's after the six planes of a
+// box far outside every facet (so that the intersection is bounded whatever the tiers are;
+// a box face left on the stone means the tiers do not close it).
+Planes design_planes(const GemcadDesign& d, std::size_t upto, Which which = Which::Preform) {
     Planes p;
     double far = 1;
     for (const GemcadTier& t : d.tiers) far = std::max(far, std::fabs(t.distance));
     far *= 1e3;
     static const char* const kBox[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < 6 && which == Which::Preform; ++k) {
         const double s = k % 2 ? -1 : 1;
         const int axis = k / 2;
         p.planes.emplace_back(axis == 0 ? s : 0.0, axis == 1 ? s : 0.0, axis == 2 ? s : 0.0, -far);
@@ -46,6 +53,7 @@ Planes design_planes(const GemcadDesign& d, std::size_t upto) {
     }
     for (std::size_t k = 0; k < upto && k < d.tiers.size(); ++k) {
         const GemcadTier& t = d.tiers[k];
+        if (is_cleft_tier(t, static_cast<int>(k) + 1) != (which == Which::Cleft)) continue;
         const Dir a = unit(t.angle);  // (cos, sin) of the angle to the girdle plane
         const double nz = t.pavilion ? -a.c : a.c;
         for (std::size_t j = 0; j < t.indices.size(); ++j) {
@@ -64,6 +72,10 @@ std::string tier_text(const GemcadDesign& d, int k) {
     return "tier " + std::to_string(k) + " ('" + clip_echo(t.name(k)) + "'" +
            (t.line > 0 ? ", line " + std::to_string(t.line) : std::string()) + ")";
 }
+
+struct LessPoint {
+    bool operator()(const P3& a, const P3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
+};
 
 // A point strictly inside every plane, if the solid has any volume.
 boost::optional<P3> interior_point(const std::vector<Pl>& planes) {
@@ -191,10 +203,48 @@ Extent caliper(const std::vector<Vec3>& pts) {
     return best;
 }
 
+// The exact volume inside closed, outward loops (or triangles): the divergence theorem.
+template <class Faces>
+FT volume_of(const Faces& faces) {
+    FT v = 0;
+    for (const auto& l : faces)
+        for (std::size_t k = 1; k + 1 < l.size(); ++k)
+            v += CGAL::determinant(l[0] - CGAL::ORIGIN, l[k] - CGAL::ORIGIN, l[k + 1] - CGAL::ORIGIN);
+    return v / 6;
+}
+
+void measure_extent(DesignGem& out) {
+    const Extent e = caliper(out.gem.mesh.vertices);
+    out.width = e.width;
+    out.length = e.length;
+    double zlo = out.gem.mesh.vertices.front().z(), zhi = zlo;
+    for (const Vec3& v : out.gem.mesh.vertices) {
+        zlo = std::min(zlo, v.z());
+        zhi = std::max(zhi, v.z());
+    }
+    out.height = zhi - zlo;
+}
+
+DesignGem build_preform(const GemcadDesign& d);
+void grind_cleft(const GemcadDesign& d, DesignGem& out);
+
 }  // namespace
 
 DesignGem build_design(const GemcadDesign& d) {
     t_source = d.source;
+    DesignGem out = build_preform(d);
+    out.preform_volume = out.volume;
+    for (std::size_t k = 0; k < d.tiers.size(); ++k)
+        if (is_cleft_tier(d.tiers[k], static_cast<int>(k) + 1)) {
+            grind_cleft(d, out);
+            break;
+        }
+    return out;
+}
+
+namespace {
+
+DesignGem build_preform(const GemcadDesign& d) {
     const Planes all = design_planes(d, d.tiers.size());
     const auto inside = interior_point(all.planes);
     if (!inside) {
@@ -214,28 +264,165 @@ DesignGem build_design(const GemcadDesign& d) {
 
     DesignGem out;
     out.planes = static_cast<int>(all.planes.size()) - 6;
-    FT volume = 0;
-    for (const Loop& l : loops)
-        for (std::size_t k = 1; k + 1 < l.size(); ++k)
-            volume += CGAL::determinant(l[0] - CGAL::ORIGIN, l[k] - CGAL::ORIGIN, l[k + 1] - CGAL::ORIGIN);
-    out.volume = dbl(volume / 6);
+    out.volume = dbl(volume_of(loops));
 
     append_facets(out.gem, all.planes, all.labels, loops);
     double size = 0;
     for (const Vec3& v : out.gem.mesh.vertices) size = std::max(size, v.norm());
     merge_close_vertices(out.gem, 1e-7 * size);
     check_closed_convex(out.gem, 1e-9 * size);
-
-    const Extent e = caliper(out.gem.mesh.vertices);
-    out.width = e.width;
-    out.length = e.length;
-    double zlo = out.gem.mesh.vertices.front().z(), zhi = zlo;
-    for (const Vec3& v : out.gem.mesh.vertices) {
-        zlo = std::min(zlo, v.z());
-        zhi = std::max(zhi, v.z());
-    }
-    out.height = zhi - zlo;
+    measure_extent(out);
     return out;
 }
+
+// The facet loops of one plane's triangles: one loop per edge-connected patch (its boundary,
+// counter-clockwise seen from outside); refused when a patch has a hole or pinches.
+std::vector<std::vector<int>> patch_loops(const std::vector<std::array<int, 3>>& tris) {
+    const std::size_t n = tris.size();
+    std::vector<std::size_t> rep(n);
+    std::iota(rep.begin(), rep.end(), std::size_t{0});
+    const auto find = [&](std::size_t i) {
+        while (rep[i] != i) i = rep[i] = rep[rep[i]];
+        return i;
+    };
+    std::map<std::pair<int, int>, std::size_t> edge_tri;
+    for (std::size_t t = 0; t < n; ++t)
+        for (int k = 0; k < 3; ++k) edge_tri[{tris[t][k], tris[t][(k + 1) % 3]}] = t;
+    for (const auto& [e, t] : edge_tri) {
+        const auto back = edge_tri.find({e.second, e.first});
+        if (back != edge_tri.end()) rep[find(t)] = find(back->second);
+    }
+    std::map<std::size_t, std::map<int, int>> next;  // patch -> boundary edge a -> b
+    for (const auto& [e, t] : edge_tri)
+        if (!edge_tri.count({e.second, e.first}))
+            if (!next[find(t)].emplace(e.first, e.second).second) refuse("a facet of the stone pinches in a vertex");
+    std::vector<std::vector<int>> loops;
+    for (auto& [patch, nx] : next) {
+        std::vector<int> loop{nx.begin()->first};
+        for (int v = nx.begin()->second; v != loop.front(); v = nx.at(v)) {
+            if (loop.size() > nx.size()) refuse("a facet's boundary does not close");
+            loop.push_back(v);
+        }
+        if (loop.size() != nx.size()) refuse("a facet of the stone has a hole (the cleft lies inside a facet)");
+        loops.push_back(std::move(loop));
+    }
+    return loops;
+}
+
+// Removes the notch (the preform's part outside every cleft facet) from the built preform
+// `out`, replacing its gem by the stone with a cleft.
+void grind_cleft(const GemcadDesign& d, DesignGem& out) {
+    const Planes pre = design_planes(d, d.tiers.size(), Which::Preform);
+    const Planes cl = design_planes(d, d.tiers.size(), Which::Cleft);
+    const std::string cleft = tier_text(d, cl.tier.front());
+    const std::vector<Loop> pre_loops = facet_loops(pre.planes, *interior_point(pre.planes), refuse);
+    std::vector<Pl> notch = pre.planes;
+    for (const Pl& p : cl.planes) notch.push_back(p.opposite());
+    const auto in_notch = interior_point(notch);
+    if (!in_notch)
+        throw InputError(d.source + ": " + cleft +
+                         ": the cleft removes nothing (no part of the stone lies outside every cleft facet)");
+    const std::vector<Loop> notch_loops = facet_loops(notch, *in_notch, refuse);
+    const Difference diff = convex_difference(pre_loops, notch_loops, refuse);
+    if (diff.triangles.empty()) throw InputError(d.source + ": " + cleft + ": the cleft removes the whole stone");
+    if (diff.pieces != 1)
+        throw InputError(d.source + ": " + cleft + ": the cleft cuts the stone in " + std::to_string(diff.pieces) +
+                         " pieces");
+    const FT v_pre = volume_of(pre_loops), v_notch = volume_of(notch_loops), v = volume_of(diff.triangles);
+    if (v != v_pre - v_notch) refuse("the stone's volume is not the preform's less the notch's");
+
+    // Each triangle's plane: the preform's facets, then the cleft's (same orientation).
+    std::vector<Pl> planes = pre.planes;
+    std::vector<std::string> labels = pre.labels;
+    planes.insert(planes.end(), cl.planes.begin(), cl.planes.end());
+    labels.insert(labels.end(), cl.labels.begin(), cl.labels.end());
+    const std::size_t first_cleft = pre.planes.size();
+    std::map<P3, int, LessPoint> ids;
+    std::vector<Vec3> vertices;
+    std::map<std::size_t, std::vector<std::array<int, 3>>> by_plane;
+    for (const auto& t : diff.triangles) {
+        std::size_t i = 0;
+        const V3 n = CGAL::cross_product(t[1] - t[0], t[2] - t[1]);
+        while (i < planes.size() && !(planes[i].has_on(t[0]) && planes[i].has_on(t[1]) && planes[i].has_on(t[2]) &&
+                                      n * planes[i].orthogonal_vector() > 0))
+            ++i;
+        if (i == planes.size()) refuse("a face of the stone lies on no facet plane");
+        std::array<int, 3> tri{};
+        for (int k = 0; k < 3; ++k) {
+            auto it = ids.find(t[static_cast<std::size_t>(k)]);
+            if (it == ids.end()) {
+                const P3& q = t[static_cast<std::size_t>(k)];
+                it = ids.emplace(q, static_cast<int>(vertices.size())).first;
+                vertices.emplace_back(dbl(q.x()), dbl(q.y()), dbl(q.z()));
+            }
+            tri[static_cast<std::size_t>(k)] = it->second;
+        }
+        by_plane[i].push_back(tri);
+    }
+
+    Gem gem;
+    gem.convex = false;
+    gem.mesh.vertices = vertices;
+    int cleft_facets = 0;
+    std::vector<bool> on_cleft;  // per facet
+    for (const auto& [i, tris] : by_plane) {
+        const Pl& p = planes[i];
+        const double a = dbl(p.a()), b = dbl(p.b()), c = dbl(p.c()), dd = dbl(p.d());
+        const double norm = std::sqrt(a * a + b * b + c * c);
+        for (std::vector<int>& loop : patch_loops(tris)) {
+            GemFacet f;
+            f.label = labels[i];
+            f.plane.normal = Vec3(a, b, c) / norm;
+            f.plane.offset = -dd / norm;
+            for (int id : loop) f.polygon.push_back(vertices[static_cast<std::size_t>(id)]);
+            f.vertex_ids = std::move(loop);
+            const int facet = static_cast<int>(gem.facets.size());
+            // The patch's own triangles (a patch of several facets: the ones of this loop).
+            std::set<int> in(f.vertex_ids.begin(), f.vertex_ids.end());
+            for (const auto& t : tris)
+                if (in.count(t[0]) && in.count(t[1]) && in.count(t[2])) {
+                    gem.mesh.triangles.emplace_back(t[0], t[1], t[2]);
+                    gem.triangle_facet.push_back(facet);
+                }
+            on_cleft.push_back(i >= first_cleft);
+            if (on_cleft.back()) ++cleft_facets;
+            gem.solid.planes.push_back(f.plane);
+            gem.solid.labels.push_back(f.label);
+            gem.facets.push_back(std::move(f));
+        }
+    }
+    if (gem.mesh.triangles.size() != diff.triangles.size()) refuse("a facet's triangles are not one patch");
+
+    // Closed: every directed edge once, its reverse once; Euler characteristic 2.
+    std::map<std::pair<int, int>, int> edges;
+    for (const auto& t : gem.mesh.triangles)
+        for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+    for (const auto& [e, count] : edges) {
+        const auto back = edges.find({e.second, e.first});
+        if (count != 1 || back == edges.end() || back->second != 1)
+            refuse("the stone does not close: an edge is not shared by exactly two triangles");
+    }
+    const long V = static_cast<long>(vertices.size()), E = static_cast<long>(edges.size() / 2),
+               T = static_cast<long>(gem.mesh.triangles.size());
+    if (V - E + T != 2) refuse("Euler characteristic " + std::to_string(V - E + T) + ", not 2");
+    // Convex except at its cleft: every vertex inside every facet plane but the cleft's.
+    double size = 0;
+    for (const Vec3& q : vertices) size = std::max(size, q.norm());
+    for (std::size_t f = 0; f < gem.facets.size(); ++f) {
+        if (on_cleft[f]) continue;
+        for (const Vec3& q : vertices)
+            if (gem.facets[f].plane.normal.dot(q) - gem.facets[f].plane.offset > 1e-9 * size)
+                refuse("not convex away from the cleft: a vertex lies outside facet '" + gem.facets[f].label + "'");
+    }
+    out.gem = std::move(gem);
+    out.planes += static_cast<int>(cl.planes.size());
+    out.volume = dbl(v);
+    out.preform_volume = dbl(v_pre);
+    out.notch_volume = dbl(v_notch);
+    out.cleft_facets = cleft_facets;
+    measure_extent(out);
+}
+
+}  // namespace
 
 }  // namespace refract

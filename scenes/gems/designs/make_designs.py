@@ -101,6 +101,18 @@ def pear(tip):
     return disk + lens_half(tip, True)
 
 
+def heart(lobe_r, lobe_x, lobe_y, tip, n=2000):
+    """The heart's convex preform outline: the hull of two lobes (disks of radius lobe_r at
+    (+-lobe_x, lobe_y), lobe_x + lobe_r = 1) and the point (0, -tip); the cleft between the
+    lobes is ground in afterwards (cleft tiers, see design())."""
+    pts = [(0.0, -tip)]
+    for sx in (-1.0, 1.0):
+        for k in range(n):
+            t = 2 * math.pi * k / n
+            pts.append((sx * lobe_x + lobe_r * math.cos(t), lobe_y + lobe_r * math.sin(t)))
+    return pts
+
+
 def round_outline():
     return ellipse(1.0)
 
@@ -124,8 +136,12 @@ def surviving(text):
 
 
 def design(name, outline, girdle_az, girdle_half, crown, table_inset, pavilion, culet_inset=None,
-           headings=(), symmetry=(1, True), index=2.417):
+           headings=(), symmetry=(1, True), index=2.417, cleft=()):
     """crown/pavilion: lists of (angle, inset, azimuths), from the girdle inwards.
+
+    cleft: (angle, distance, index) of facets ground in after the convex preform the other
+    tiers cut (tier CL, geometry/gem/gemcad.h): the notch removed is the part of the preform
+    outside every cleft facet. The preform alone is pruned; the cleft is written as given.
 
     Tiers are named as the trade names them: G the girdle, C1, C2, ... the crown's rows and
     P1, P2, ... the pavilion's from the girdle inwards (their angles decrease), T the table,
@@ -194,7 +210,12 @@ def design(name, outline, girdle_az, girdle_half, crown, table_inset, pavilion, 
     lines += ["H " + h for h in (name,) + tuple(headings)]
     head, foot = lines, ["F written by scenes/gems/designs/make_designs.py (refract)"]
     keep = surviving("\n".join(head + body + foot) + "\n")
-    return "\n".join(head + text(keep) + foot) + "\n"
+    cl = {}
+    for angle, d, i in cleft:
+        cl.setdefault((angle, round(d, 10)), []).append(i)
+    cleft_lines = ["a %s %.10f %d n CL%s" % (angle, d, idx[0], "".join(" %d" % i for i in idx[1:]))
+                   for (angle, d), idx in cl.items()]
+    return "\n".join(head + text(keep) + cleft_lines + foot) + "\n"
 
 
 def main():
@@ -254,6 +275,21 @@ def main():
         headings=("Source: half round, half marquise outline with brilliant-style facets (the trade's pear);",
                   "reference proportions: L/W 1.30, table ~55 %, crown 36/25 deg, pavilion 42/40 deg"),
         symmetry=(1, True))
+    # The heart: the convex preform (two lobes and a point, crown and pavilion rows as the
+    # pear's), then the cleft, a V-shaped notch between the lobes ground in with three
+    # vertical facets: two walls facing each other at 33.75 deg either side of the axis
+    # (indices 33 and 63) meeting the axis at y = apex, and a short flat (index 48) at y = floor.
+    apex, floor, wall = 0.25, 0.30, 33.75
+    cat["heart"] = design(
+        "Heart (modified brilliant with a cleft)", heart(0.55, 0.45, 0.15, 1.3), every(11.25), 0.02,
+        [(36, 0.0, r16), (25, 0.15, r8o)], 0.45,
+        [(42, 0.0, r16), (40, 0.3, r8o)],
+        headings=("Source: the trade's heart shape: two round lobes, a point and a cleft between the lobes, cut as a",
+                  "convex preform with the cleft ground in last (tier CL); reference proportions: L/W 1.00,",
+                  "table ~55 %, crown 36/25 deg, pavilion 42/40 deg, cleft ~20 % of the length deep"),
+        symmetry=(1, True),
+        cleft=[("90", math.sin(math.radians(wall)) * apex, 33), ("90", math.sin(math.radians(wall)) * apex, 63),
+               ("90", floor, 48)])
     cat["marquise"] = design(
         "Marquise (navette modified brilliant)", marquise(2.0), every(11.25), 0.02,
         [(36, 0.0, r16), (25, 0.15, r8o)], 0.45,

@@ -16,7 +16,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CUTS = [("princess", "princess"), ("emerald", "emerald"), ("asscher", "asscher"), ("radiant", "radiant"),
-        ("cushion", "cushion"), ("oval", "oval"), ("pear", "pear"), ("marquise", "marquise"),
+        ("cushion", "cushion"), ("oval", "oval"), ("pear", "pear"), ("heart", "heart"), ("marquise", "marquise"),
         ("old-european", "old European"), ("single", "single cut")]
 
 
