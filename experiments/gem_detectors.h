@@ -1,11 +1,12 @@
 #pragma once
 // Detectors of the face-up phenomena the trade names (issue 31; docs/gem-metrics.md,
-// "Nail-head and fish-eye"): each a number per cut with its standard error, measured on the
+// "Nail-head and fish-eye", "Obstruction"): each a number per cut with its standard error, measured on the
 // light-return eye rays (experiments/gem_metrics.cpp), and one threshold that decides
 // whether the cut shows it. Defined here only.
 //
 // - Nail-head (a dark centre face-up): the share of the light of the eye rays entering
-//   through the central zone of the table (rays of its own, drawn uniformly over the zone) (within kNailHeadZone of the table's radius) that
+//   through the central zone of the table (within kNailHeadZone of the table's radius; rays
+//   of its own, drawn uniformly over the zone, MetricOptions::centre_share of them) that
 //   comes from the observer's head, the directions the observer model blocks (leaving
 //   through the crown within its head cone of the eye), less the same share over the rest
 //   of the face: the centre darker than the face by the head's reflection. In a deep pavilion the table's
@@ -29,7 +30,11 @@
 //
 // Thresholds: docs/gem-metrics.md gives the measured values behind them (the trade's
 // limits, pavilion steeper than about 42–43° for a nail-head and shallower than about 39°
-// for a fish-eye, are where the detectors cross them under the default observer).
+// for a fish-eye, are where the detectors cross them under the default observer). The
+// nail-head's 0.35 lies between the largest value away from a nail-head at Tolkowsky's
+// table (0.327 ± 0.006, pavilion 39.25°) and the smallest at 43.75° over the gem-cuts
+// detector grid (0.373 ± 0.009), under aset; the obstruction's 0.25 (a quarter of the
+// face's light from the head) is refract's own.
 #include <refract/experiments/gem_metrics.h>
 #include <refract/geometry/ray.h>
 
