@@ -79,6 +79,7 @@ gem_sweep::Sweep table_sweep(bool quick);  // table at the GIA default crown and
 // How often the obstruction detector fires over a detector grid, and its range.
 struct ObstructionCount {
     int cuts = 0, firing = 0;  // possible cuts, and those that show obstruction
+    int near = 0;              // cuts within two standard errors of the threshold
     double lo = 0, hi = 0;     // the smallest and largest value
 };
 ObstructionCount obstruction_count(const std::vector<gem_sweep::Row>& rows);

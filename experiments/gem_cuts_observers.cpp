@@ -197,6 +197,7 @@ ObstructionCount obstruction_count(const std::vector<sw::Row>& rows) {
         c.hi = std::max(c.hi, v);
         ++c.cuts;
         c.firing += gem_metrics::shows_obstruction(row.metrics.obstruction);
+        c.near += std::fabs(v - gem_metrics::kObstructionThreshold) < 2 * row.metrics.obstruction.error;
     }
     return c;
 }

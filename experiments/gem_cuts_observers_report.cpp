@@ -281,6 +281,10 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
         else if (c.firing == 0) s << "no cut of the detector grid shows obstruction" << range << ".";
         else if (c.firing == c.cuts) s << "every cut of the detector grid shows obstruction" << range << ": the head hides a large share of every face.";
         else s << c.firing << " of " << c.cuts << " cuts of the detector grid show obstruction" << range << ".";
+        if (c.near > 0)
+            s << " " << c.near << " of the " << c.cuts
+              << " lie within two standard errors of the threshold, undecided at this ray count (the threshold is a "
+                 "convention on a smoothly varying share: read the map's values).";
         for (const auto& x : o.phenomena)
             if (x.possible && std::fabs(x.cut.crown_angle - 34.5) < 1e-9 && std::fabs(x.cut.pavilion_angle - 40.75) < 1e-9)
                 s << " At Tolkowsky's angles " << fmt(x.metrics.obstruction.value, 3) << " ± "
