@@ -29,7 +29,7 @@ gem_metrics::MetricOptions light_return_only(gem_metrics::MetricOptions m, const
 
 constexpr int kPhenomenaRays = 1024, kQuickPhenomenaRays = 64;
 // The detector grid's and the renders' central-zone rays: four per light-return ray (4096
-// at 1024 rays, a nail-head error of about 0.007; gem_detectors.h).
+// at 1024 rays; the nail-head error, about 0.010, is then the rest of the face's; gem_detectors.h).
 constexpr double kCentreShare = 4.0;
 
 const MetricInfo kLightReturn{"light_return", "light return (brilliance)", true};
