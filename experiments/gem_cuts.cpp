@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include <refract/geometry/error.h>
+
 namespace refract::experiments::gem_cuts {
 
 namespace sw = gem_sweep;
@@ -23,6 +25,7 @@ const gem_metrics::Metric& metric_of(const gem_metrics::GemMetrics& g, const std
     if (key == "leakage") return g.leakage;
     if (key == "nail_head") return g.nail_head;
     if (key == "fish_eye") return g.fish_eye;
+    if (key == "obstruction") return g.obstruction;
     return g.scintillation;
 }
 
@@ -46,8 +49,8 @@ bool better(const MetricInfo& m, double a, double b) { return m.maximise ? a > b
 
 sw::Sweep crown_pavilion_sweep(bool quick) {
     sw::Sweep s = base_sweep(quick);
-    sw::set_axis(s.grid, sw::parse_axis("crown_angle", quick ? "30:38:4" : "23:41:1"));
-    sw::set_axis(s.grid, sw::parse_axis("pavilion_angle", quick ? "39:42:1.5" : "38:43:0.25"));
+    sw::set_axis(s.grid, sw::parse_axis("crown_angle", quick ? "30:38:4" : "20:41:1"));
+    sw::set_axis(s.grid, sw::parse_axis("pavilion_angle", quick ? "39:42:1.5" : "38:43.75:0.25"));
     return s;
 }
 
@@ -93,6 +96,27 @@ Edge edge_of(const sw::Grid& grid, const BrilliantCut& cut) {
     return e;
 }
 
+Edge builder_limits(const sw::Grid& grid, const BrilliantCut& cut, const Edge& e) {
+    const sw::Axis &c = grid.axes[1], &p = grid.axes[2];
+    auto refused = [&](double BrilliantCut::*field, const sw::Axis& a, double sign) {
+        if (a.count < 2) return false;
+        BrilliantCut beyond = cut;
+        beyond.*field += sign * (a.value(1) - a.value(0));
+        try {
+            validate(beyond);
+            return false;
+        } catch (const InputError&) {
+            return true;
+        }
+    };
+    Edge l;
+    l.crown_low = e.crown_low && refused(&BrilliantCut::crown_angle, c, -1);
+    l.crown_high = e.crown_high && refused(&BrilliantCut::crown_angle, c, 1);
+    l.pavilion_low = e.pavilion_low && refused(&BrilliantCut::pavilion_angle, p, -1);
+    l.pavilion_high = e.pavilion_high && refused(&BrilliantCut::pavilion_angle, p, 1);
+    return l;
+}
+
 Optimum optimum_of(const MetricInfo& m, const std::vector<sw::Row>& rows, const sw::Row& tolk, const sw::Grid& grid) {
     std::vector<const sw::Row*> ok;
     for (const auto& row : rows)
@@ -113,6 +137,7 @@ Optimum optimum_of(const MetricInfo& m, const std::vector<sw::Row>& rows, const 
     const double se = std::hypot(b.error, o.tolkowsky.error);
     o.sigmas = se > 0 ? (b.value - o.tolkowsky.value) / se : 0;
     o.edge = edge_of(grid, o.best.cut);
+    o.builder_limit = builder_limits(grid, o.best.cut, o.edge);
     return o;
 }
 

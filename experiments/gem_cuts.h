@@ -24,7 +24,7 @@ struct MetricInfo {
     bool maximise;      // leakage is best when smallest
 };
 const std::vector<MetricInfo>& metrics();
-// Also "nail_head" and "fish_eye" (the detectors, not in metrics()).
+// Also "nail_head", "fish_eye" and "obstruction" (the detectors, not in metrics()).
 const gem_metrics::Metric& metric_of(const gem_metrics::GemMetrics& g, const std::string& key);
 
 // The two grids: reproduce's resolution, or a few cuts (quick); and the full grid of the
@@ -40,11 +40,15 @@ struct Edge {
     bool any() const { return crown_low || crown_high || pavilion_low || pavilion_high; }
 };
 Edge edge_of(const gem_sweep::Grid& grid, const BrilliantCut& cut);
+// Of the edges e marks, those where the grid ends at the cut builder's limit: the cut one
+// grid step beyond (crown or pavilion) is refused by validate (the builder's domain).
+Edge builder_limits(const gem_sweep::Grid& grid, const BrilliantCut& cut, const Edge& e);
 
 struct Optimum {
     std::string metric;
     std::string observer = "aset";         // the observer model the map was measured under
     Edge edge;                             // the grid edges the best cut lies on
+    Edge builder_limit;                    // of those, where the cut builder's range ends
     gem_sweep::Row best;                   // the grid's best cut for this metric
     std::vector<gem_sweep::Row> top;       // the five best, best first
     gem_metrics::Metric tolkowsky;         // Tolkowsky's cut, evaluated alike
@@ -67,16 +71,26 @@ const std::vector<std::string>& map_observers();  // aset, sasian, hemisphere
 // (MetricOptions::also_observers).
 std::vector<std::string> other_observers();
 
-// The nail-head and fish-eye detectors (gem_detectors.h) over a grid wider in the pavilion
+// The nail-head, fish-eye and obstruction detectors (gem_detectors.h) over a grid wider in the pavilion
 // angle than the map (the trade's limits lie outside it), under each map observer.
 gem_sweep::Sweep phenomena_sweep(bool quick);
 gem_sweep::Sweep table_sweep(bool quick);  // table at the GIA default crown and pavilion
+
+// How often the obstruction detector fires over a detector grid, and its range.
+struct ObstructionCount {
+    int cuts = 0, firing = 0;  // possible cuts, and those that show obstruction
+    int near = 0;              // cuts within two standard errors of the threshold
+    double lo = 0, hi = 0;     // the smallest and largest value
+};
+ObstructionCount obstruction_count(const std::vector<gem_sweep::Row>& rows);
 
 struct ObserverMap {
     std::string observer;
     std::vector<gem_sweep::Row> rows;        // the crown × pavilion map, in cut order
     std::vector<gem_sweep::Row> table_rows;  // the table scan
     std::vector<gem_sweep::Row> phenomena;   // the detector grid
+    ObstructionCount obstruction;            // over the detector grid
+    int nail_head_undecided = 0;             // detector-grid cuts within 2σ of the threshold
     gem_sweep::Row tolkowsky;                // Tolkowsky's cut under this observer
     Optimum light_return;                    // the map's best light return against Tolkowsky's
 };
@@ -113,9 +127,11 @@ struct RenderedCut {
     std::string label;   // "fish-eye (pavilion 37.5°)", ...
     gem_sweep::Row row;  // measured as the map's cuts (aset), the detectors included
     std::vector<std::pair<std::string, Image>> views;  // render_views() order
-    std::vector<std::pair<double, Image>> tilts;       // the ASET view at render_tilts()
+    // Per view of render_tilt_views(), that view at render_tilts() (the stone tilted).
+    std::vector<std::pair<std::string, std::vector<std::pair<double, Image>>>> tilts;
 };
 std::vector<double> render_tilts();  // 0, 10, 20, 30 degrees
+const std::vector<std::string>& render_tilt_views();  // aset, ideal-scope
 const std::vector<std::string>& render_views();  // aset, ideal-scope, brilliance
 std::vector<double> render_pavilions();          // 37.25, 40.75, 43.75
 // Tolkowsky's cut with the GIA default's girdle (3 %; his knife edge has no girdle to
@@ -172,9 +188,10 @@ std::string marks_text(const Result& r);
 // The observer maps, detector maps and literature sections of summary.md, with their
 // CSVs and figures (experiments/gem_cuts_observers_report.cpp).
 void write_observers(const Result& r, const std::string& dir, std::ostream& summary);
-// "crown 23°, the grid's shallowest and ..." for the edges e marks; and the sentence on an
-// optimum, chosen by whether it lies on an edge.
-std::string edge_text(const Edge& e, const gem_sweep::Grid& grid);
+// "crown 23°, the grid's shallowest and ..." for the edges e marks (", the cut builder's
+// limit" after those `limit` marks); and the sentence on an optimum, chosen by whether it
+// lies on an edge and whether the builder's range ends there.
+std::string edge_text(const Edge& e, const gem_sweep::Grid& grid, const Edge& limit = {});
 std::string optimum_sentence(const Optimum& o, const gem_sweep::Grid& grid);
 
 }  // namespace refract::experiments::gem_cuts

@@ -28,6 +28,9 @@ gem_metrics::MetricOptions light_return_only(gem_metrics::MetricOptions m, const
 }
 
 constexpr int kPhenomenaRays = 1024, kQuickPhenomenaRays = 64;
+// The detector grid's and the renders' central-zone rays: four per light-return ray (4096
+// at 1024 rays; the nail-head error, about 0.010, is then the rest of the face's; gem_detectors.h).
+constexpr double kCentreShare = 4.0;
 
 const MetricInfo kLightReturn{"light_return", "light return (brilliance)", true};
 
@@ -43,6 +46,7 @@ sw::Sweep phenomena_sweep(bool quick) {
     s.metric = light_return_only(s.metric, "aset");
     s.metric.rays = quick ? kQuickPhenomenaRays : kPhenomenaRays;
     s.metric.fire_divisor = s.metric.scintillation_divisor = s.metric.rays;
+    s.metric.centre_share = kCentreShare;
     sw::set_axis(s.grid, sw::parse_axis("crown_angle", quick ? "29.5:34.5:5" : "24.5:39.5:2.5"));
     sw::set_axis(s.grid, sw::parse_axis("pavilion_angle", quick ? "37.75:43.75:3" : "37.25:43.75:0.5"));
     return s;
@@ -65,6 +69,11 @@ std::vector<double> render_pavilions() { return {37.25, 40.75, 43.75}; }
 
 std::vector<double> render_tilts() { return {0.0, 10.0, 20.0, 30.0}; }
 
+const std::vector<std::string>& render_tilt_views() {
+    static const std::vector<std::string> v{"aset", "ideal-scope"};
+    return v;
+}
+
 BrilliantCut tolkowsky_with_girdle(double pavilion) {
     BrilliantCut c = brilliant_preset("tolkowsky");
     c.girdle = brilliant_preset("gia-default").girdle;
@@ -78,6 +87,7 @@ void add_renders(Result& r) {
     r.render_size = r.quick ? 40 : 160;
     gem_metrics::MetricOptions m = light_return_only(r.main.metric, "aset");
     m.also_observers = other_observers();
+    m.centre_share = kCentreShare;
     const auto pav = render_pavilions();
     for (size_t i = 0; i < pav.size(); ++i) {
         RenderedCut c;
@@ -88,9 +98,17 @@ void add_renders(Result& r) {
             const Gem gem = build_brilliant(cut);
             for (const std::string& v : render_views())
                 c.views.emplace_back(v, gem_metrics::render_view(gem, v, r.render_size, 1, m));
-            for (const double tilt : render_tilts())
-                c.tilts.emplace_back(tilt, tilt == 0.0 ? c.views.front().second
-                                                       : gem_metrics::render_view(gem, "aset", r.render_size, 1, m, tilt));
+            for (const std::string& v : render_tilt_views()) {
+                // Tilt 0 is the face-up image already rendered (render_view: to the bit).
+                const Image* up = nullptr;
+                for (const auto& [name, img] : c.views)
+                    if (name == v) up = &img;
+                std::vector<std::pair<double, Image>> series;
+                for (const double tilt : render_tilts())
+                    series.emplace_back(tilt, tilt == 0.0 && up ? *up
+                                                                : gem_metrics::render_view(gem, v, r.render_size, 1, m, tilt));
+                c.tilts.emplace_back(v, std::move(series));
+            }
         }
         r.renders.push_back(std::move(c));
     }
@@ -114,6 +132,7 @@ sw::Row under(sw::Row row, size_t k) {
     const auto& a = row.metrics.also.at(k - 1);
     row.metrics.light_return = a.light_return;
     row.metrics.nail_head = a.nail_head;
+    row.metrics.obstruction = a.obstruction;
     row.metrics.observer = a.observer;
     return row;
 }
@@ -143,6 +162,8 @@ void add_observer_maps(Result& r, int threads) {
         m.tolkowsky = under(r.presets.at(0).second, k);
         m.phenomena = under(phenomena, k);
         m.light_return = optimum_of(kLightReturn, m.rows, m.tolkowsky, r.main.grid);
+        m.obstruction = obstruction_count(m.phenomena);
+        for (const auto& x : m.phenomena) m.nail_head_undecided += x.possible && !gem_metrics::nail_head_decided(x.metrics.nail_head);
         r.nail_head_onset.push_back(nail_head_onsets(p, m.phenomena));
         r.fish_eye_limit.push_back(fish_eye_limits(p, m.phenomena));
         r.observers.push_back(std::move(m));
@@ -165,6 +186,21 @@ std::vector<std::vector<bool>> firing(const sw::Sweep& s, const std::vector<sw::
 }
 
 }  // namespace
+
+ObstructionCount obstruction_count(const std::vector<sw::Row>& rows) {
+    ObstructionCount c;
+    for (const auto& row : rows) {
+        if (!row.possible) continue;
+        const double v = row.metrics.obstruction.value;
+        if (c.cuts == 0) c.lo = c.hi = v;
+        c.lo = std::min(c.lo, v);
+        c.hi = std::max(c.hi, v);
+        ++c.cuts;
+        c.firing += gem_metrics::shows_obstruction(row.metrics.obstruction);
+        c.near += std::fabs(v - gem_metrics::kObstructionThreshold) < 2 * row.metrics.obstruction.error;
+    }
+    return c;
+}
 
 std::vector<Onset> nail_head_onsets(const sw::Sweep& s, const std::vector<sw::Row>& rows) {
     const auto f = firing(s, rows, true);

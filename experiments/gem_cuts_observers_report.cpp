@@ -91,35 +91,61 @@ std::string phenomena_body(const Result& r, size_t k, const sw::Grid& g) {
     const ObserverMap& o = r.observers[k];
     std::ostringstream b;
     b << frame_text(g) << "set title \"nail-head and fish-eye, observer " << o.observer
-      << "\\n{/=9 dark red: nail-head, blue: fish-eye, purple: both, grey: neither; circle: Tolkowsky 1919}\"\n"
-      << "rgb(c) = c == 1 ? 0x8b1a1a : c == 2 ? 0x2060c0 : c == 3 ? 0x7a3d9a : 0xd8d8d8\n"
+      << "\\n{/=9 dark red: nail-head, blue: fish-eye, purple: both, orange: nail-head undecided at 2σ, grey: "
+         "neither; circle: Tolkowsky 1919}\"\n"
+      << "rgb(c) = c == 1 ? 0x8b1a1a : c == 2 ? 0x2060c0 : c == 3 ? 0x7a3d9a : c == 4 ? 0xe08a1e : 0xd8d8d8\n"
       << "plot " << cells("gem_cuts_phenomena.dat", g, "(rgb($" + std::to_string(3 + k) + "))", "lc rgb variable")
       << ", \\\n     'gem_cuts_observer_marks.dat' index " << 2 * k
       << " using 1:2 with points pt 6 ps 2.2 lw 2 lc rgb 'black'\n";
     return b.str();
 }
 
+// One observer's obstruction map: viridis cells of the value, a cross where it fires.
+std::string obstruction_body(const Result& r, size_t k, const sw::Grid& g) {
+    const ObserverMap& o = r.observers[k];
+    const double lo = o.obstruction.lo, hi = o.obstruction.hi > lo ? o.obstruction.hi : lo + 1e-3;
+    std::ostringstream b;
+    b << viridis_palette() << "\nset cbrange [" << sw::number(lo) << ":" << sw::number(hi) << "]\n"
+      << "set cblabel 'obstruction (share of the light from the head)'\n"
+      << frame_text(g) << "set title \"obstruction, observer " << o.observer << "\\n{/=9 cross: shows obstruction (>= "
+      << fmt(gem_metrics::kObstructionThreshold, 3) << "); circle: Tolkowsky 1919}\"\n"
+      << "plot " << cells("gem_cuts_obstruction.dat", g, std::to_string(3 + k), "fc palette")
+      << ", \\\n     'gem_cuts_obstruction_marks.dat' index " << k
+      << " using 1:2 with points pt 2 ps 1.4 lw 2 lc rgb 'white', \\\n     'gem_cuts_observer_marks.dat' index " << 2 * k
+      << " using 1:2 with points pt 6 ps 2.2 lw 2 lc rgb 'black'\n";
+    return b.str();
+}
+
 }  // namespace
 
-std::string edge_text(const Edge& e, const sw::Grid& grid) {
+std::string edge_text(const Edge& e, const sw::Grid& grid, const Edge& limit) {
     const sw::Axis &c = grid.axes[1], &p = grid.axes[2];
     std::string s;
-    auto add = [&](bool on, const std::string& what) {
-        if (on) s += (s.empty() ? "" : " and ") + what;
+    auto add = [&](bool on, bool at_limit, const std::string& what) {
+        if (on) s += (s.empty() ? "" : " and ") + what + (at_limit ? ", the cut builder's limit" : "");
     };
-    add(e.crown_low, "crown " + num_or_none(c.value(0)) + "°, the grid's shallowest");
-    add(e.crown_high, "crown " + num_or_none(c.value(c.count - 1)) + "°, the grid's steepest");
-    add(e.pavilion_low, "pavilion " + num_or_none(p.value(0)) + "°, the grid's shallowest");
-    add(e.pavilion_high, "pavilion " + num_or_none(p.value(p.count - 1)) + "°, the grid's steepest");
+    add(e.crown_low, limit.crown_low, "crown " + num_or_none(c.value(0)) + "°, the grid's shallowest");
+    add(e.crown_high, limit.crown_high, "crown " + num_or_none(c.value(c.count - 1)) + "°, the grid's steepest");
+    add(e.pavilion_low, limit.pavilion_low, "pavilion " + num_or_none(p.value(0)) + "°, the grid's shallowest");
+    add(e.pavilion_high, limit.pavilion_high, "pavilion " + num_or_none(p.value(p.count - 1)) + "°, the grid's steepest");
     return s;
 }
 
 std::string optimum_sentence(const Optimum& o, const sw::Grid& grid) {
     const std::string where = "crown " + num_or_none(o.best.cut.crown_angle) + "°, pavilion " + num_or_none(o.best.cut.pavilion_angle) + "°";
-    if (o.edge.any())
+    const Edge &e = o.edge, &l = o.builder_limit;
+    // Every edge the optimum lies on is one where the builder's range ends.
+    const bool all_limits = e.crown_low == l.crown_low && e.crown_high == l.crown_high &&
+                            e.pavilion_low == l.pavilion_low && e.pavilion_high == l.pavilion_high;
+    if (e.any() && all_limits)
         return "Under " + o.observer + " the best " + o.metric + " (" + where + ") lies on the grid's edge (" +
-               edge_text(o.edge, grid) + "): the optimum may lie outside the grid, and its distance from Tolkowsky's is "
-                                         "a lower bound.";
+               edge_text(e, grid, l) + "): the grid ends there because the cut builder accepts no cut a grid step "
+                                       "beyond, so the best buildable cut is at the builder's limit, and its distance "
+                                       "from Tolkowsky's is that of the limit.";
+    if (e.any())
+        return "Under " + o.observer + " the best " + o.metric + " (" + where + ") lies on the grid's edge (" +
+               edge_text(e, grid, l) + "): the optimum may lie outside the grid, and its distance from Tolkowsky's is "
+                                       "a lower bound.";
     return "Under " + o.observer + " the best " + o.metric + " (" + where + ") lies inside the grid.";
 }
 
@@ -129,9 +155,26 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
     write_text_atomic(dir + "/gem_cuts_observers_map.dat",
                       grid_text(r.observers, &ObserverMap::rows, [](const sw::Row& x) { return x.metrics.light_return.value; }));
     write_text_atomic(dir + "/gem_cuts_phenomena.dat", grid_text(r.observers, &ObserverMap::phenomena, [](const sw::Row& x) {
+                          // 4: the nail-head undecided at 2σ (drawn apart whatever the fish-eye).
+                          if (!gem_metrics::nail_head_decided(x.metrics.nail_head)) return 4.0;
                           return static_cast<double>(gem_metrics::shows_nail_head(x.metrics.nail_head) +
                                                      2 * gem_metrics::shows_fish_eye(x.metrics.fish_eye));
                       }));
+    write_text_atomic(dir + "/gem_cuts_obstruction.dat",
+                      grid_text(r.observers, &ObserverMap::phenomena, [](const sw::Row& x) { return x.metrics.obstruction.value; }));
+    std::ostringstream firing;  // index k: the cells where obstruction fires under observer k
+    for (const auto& o : r.observers) {
+        firing << "# " << o.observer << " shows obstruction\n";
+        int n = 0;
+        for (const auto& x : o.phenomena)
+            if (x.possible && gem_metrics::shows_obstruction(x.metrics.obstruction)) {
+                firing << sw::number(x.cut.crown_angle) << " " << sw::number(x.cut.pavilion_angle) << "\n";
+                ++n;
+            }
+        if (n == 0) firing << "NaN NaN\n";  // an empty block would shift the indices
+        firing << "\n\n";
+    }
+    write_text_atomic(dir + "/gem_cuts_obstruction_marks.dat", firing.str());
     std::ostringstream marks;  // index 2k: Tolkowsky, 2k + 1: observer k's best light return
     for (const auto& o : r.observers)
         marks << "# " << o.observer << " tolkowsky\n" << sw::number(o.tolkowsky.cut.crown_angle) << " "
@@ -141,8 +184,9 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
     write_text_atomic(dir + "/gem_cuts_observer_marks.dat", marks.str());
     Csv obs, phen, lit;
     obs.header = {"observer", "crown_angle", "pavilion_angle", "light_return", "light_return_error"};
-    phen.header = {"observer", "crown_angle", "pavilion_angle", "nail_head", "nail_head_error", "fish_eye", "fish_eye_error",
-                   "shows_nail_head", "shows_fish_eye"};
+    phen.header = {"observer",       "crown_angle",   "pavilion_angle",   "nail_head",       "nail_head_error",
+                   "fish_eye",       "fish_eye_error", "obstruction",      "obstruction_error", "shows_nail_head",
+                   "shows_fish_eye", "shows_obstruction"};
     for (const auto& o : r.observers) {
         for (const auto& x : o.rows)
             if (x.possible)
@@ -152,8 +196,10 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
             if (x.possible)
                 phen.add({o.observer, fmt(x.cut.crown_angle), fmt(x.cut.pavilion_angle), fmt(x.metrics.nail_head.value),
                           fmt(x.metrics.nail_head.error), fmt(x.metrics.fish_eye.value), fmt(x.metrics.fish_eye.error),
+                          fmt(x.metrics.obstruction.value), fmt(x.metrics.obstruction.error),
                           gem_metrics::shows_nail_head(x.metrics.nail_head) ? "1" : "0",
-                          gem_metrics::shows_fish_eye(x.metrics.fish_eye) ? "1" : "0"});
+                          gem_metrics::shows_fish_eye(x.metrics.fish_eye) ? "1" : "0",
+                          gem_metrics::shows_obstruction(x.metrics.obstruction) ? "1" : "0"});
     }
     write_csv(dir + "/gem_cuts_observers.csv", obs);
     write_csv(dir + "/gem_cuts_phenomena.csv", phen);
@@ -165,6 +211,7 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
     for (size_t k = 0; k < r.observers.size(); ++k) {
         gnuplot_figure(dir, "gem_cuts_light_return_" + r.observers[k].observer, light_return_body(r, k));
         gnuplot_figure(dir, "gem_cuts_phenomena_" + r.observers[k].observer, phenomena_body(r, k, ph.grid));
+        gnuplot_figure(dir, "gem_cuts_obstruction_" + r.observers[k].observer, obstruction_body(r, k, ph.grid));
     }
 
     s << "\n## Light return under three observer models\n\n"
@@ -179,7 +226,7 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
         s << "| " << o.observer << " | " << num_or_none(p.best.cut.crown_angle) << " | " << num_or_none(p.best.cut.pavilion_angle) << " | "
           << num_or_none(b.value) << " ± " << fmt(b.error, 2) << " | " << num_or_none(p.tolkowsky.value) << " ± " << fmt(p.tolkowsky.error, 2)
           << " | " << num_or_none(p.d_crown) << " | " << num_or_none(p.d_pavilion) << " | " << fmt(p.sigmas, 3) << " | "
-          << (p.edge.any() ? edge_text(p.edge, r.main.grid) : std::string("no")) << " |\n";
+          << (p.edge.any() ? edge_text(p.edge, r.main.grid, p.builder_limit) : std::string("no")) << " |\n";
     }
     s << "\n";
     for (const auto& o : r.observers) s << "- " << optimum_sentence(o.light_return, r.main.grid) << "\n";
@@ -194,7 +241,8 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
       << fmt(gem_metrics::kNailHeadThreshold, 3) << "; fish-eye = the share of the table's light that leaves through "
          "the girdle, shown at ≥ "
       << fmt(gem_metrics::kFishEyeThreshold, 3) << ". Grid crown " << ph.grid.axes[1].text() << " × pavilion "
-      << ph.grid.axes[2].text() << ", " << ph.metric.rays << " rays per cut; maps `gem_cuts_phenomena_OBSERVER.png`, "
+      << ph.grid.axes[2].text() << ", " << ph.metric.rays << " rays per cut and "
+      << static_cast<int>(ph.metric.rays * ph.metric.centre_share) << " in the table's central zone; maps `gem_cuts_phenomena_OBSERVER.png`, "
       << "data `gem_cuts_phenomena.csv`.\n\n| crown |";
     for (const auto& o : r.observers) s << " nail-head from (" << o.observer << ") |";
     s << " fish-eye up to |\n|---:|";
@@ -205,10 +253,45 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
         for (size_t k = 0; k < r.observers.size(); ++k) s << " " << num_or_none(r.nail_head_onset[k][c].pavilion) << " |";
         s << " " << num_or_none(r.fish_eye_limit.front()[c].pavilion) << " |\n";
     }
+    for (const auto& o : r.observers)
+            s << "- Under " << o.observer << " "
+              << (o.nail_head_undecided == 0
+                      ? std::string("every cut of the detector grid is decided at 2σ: none lies within two standard "
+                                    "errors of the nail-head threshold.")
+                      : std::to_string(o.nail_head_undecided) +
+                            " cuts of the detector grid lie within two standard errors of the nail-head threshold "
+                            "(orange in the map): undecided at this ray count.")
+              << "\n";
     s << "\n(\"none\": the detector does not fire at the grid's steepest, or shallowest, pavilion. The fish-eye does "
          "not depend on the observer: the same eye rays, the same exits.) Tolkowsky's own cut has a knife-edge girdle "
          "and so no fish-eye by definition; the detector grid's cut at his angles has the GIA default's girdle (the "
          "literature table's last row).\n";
+
+    s << "\n### Obstruction\n\n"
+      << "The obstruction detector (docs/gem-metrics.md, \"Obstruction\"): the share of the whole face's light that "
+         "comes from the observer's head (ASET's blue), shown at ≥ "
+      << fmt(gem_metrics::kObstructionThreshold, 3)
+      << "; the same detector grid, maps `gem_cuts_obstruction_OBSERVER.png` (a cross where it fires), the columns "
+         "`obstruction` of `gem_cuts_phenomena.csv`.\n\n";
+    for (const auto& o : r.observers) {
+        const ObstructionCount& c = o.obstruction;
+        const std::string range = " (values " + fmt(c.lo, 3) + " to " + fmt(c.hi, 3) + ")";
+        s << "- Under " << o.observer << " ";
+        if (c.cuts == 0) s << "the detector grid has no possible cut.";
+        else if (c.firing == 0) s << "no cut of the detector grid shows obstruction" << range << ".";
+        else if (c.firing == c.cuts) s << "every cut of the detector grid shows obstruction" << range << ": the head hides a large share of every face.";
+        else s << c.firing << " of " << c.cuts << " cuts of the detector grid show obstruction" << range << ".";
+        if (c.near > 0)
+            s << " " << c.near << " of the " << c.cuts
+              << " lie within two standard errors of the threshold, undecided at this ray count (the threshold is a "
+                 "convention on a smoothly varying share: read the map's values).";
+        for (const auto& x : o.phenomena)
+            if (x.possible && std::fabs(x.cut.crown_angle - 34.5) < 1e-9 && std::fabs(x.cut.pavilion_angle - 40.75) < 1e-9)
+                s << " At Tolkowsky's angles " << fmt(x.metrics.obstruction.value, 3) << " ± "
+                  << fmt(x.metrics.obstruction.error, 2)
+                  << (gem_metrics::shows_obstruction(x.metrics.obstruction) ? ": it shows obstruction." : ": it does not.");
+        s << "\n";
+    }
 
     if (!r.renders.empty() && !r.renders.front().views.empty()) {
         std::vector<Panel> panels;
@@ -243,21 +326,25 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
         image_grid_figure(dir, "gem_cuts_renders", static_cast<int>(r.renders.size()),
                           static_cast<int>(render_views().size()), panels,
                           "Tolkowsky's crown and table, three pavilion angles, in the viewers", 1.0, r.quick ? 120 : 200);
-        std::vector<Panel> tilt_panels;
-        for (const RenderedCut& c : r.renders)
-            for (const auto& [tilt, img] : c.tilts) {
-                const std::string f =
-                    "gem_cuts_render_" + sw::number(c.row.cut.pavilion_angle) + "_aset_tilt" + sw::number(tilt) + ".png";
-                write_image(dir + "/" + f, img);
-                tilt_panels.push_back({f, sw::number(c.row.cut.pavilion_angle) + "°, tilt " + sw::number(tilt) + "°"});
-            }
-        if (!tilt_panels.empty()) {
-            image_grid_figure(dir, "gem_cuts_tilts", static_cast<int>(r.renders.size()),
-                              static_cast<int>(render_tilts().size()), tilt_panels,
-                              "The same cuts in ASET, the stone tilted 0, 10, 20 and 30 degrees", 1.0,
+        for (const std::string& view : render_tilt_views()) {
+            std::vector<Panel> tilt_panels;
+            for (const RenderedCut& c : r.renders)
+                for (const auto& [v, series] : c.tilts)
+                    if (v == view)
+                        for (const auto& [tilt, img] : series) {
+                            const std::string f = "gem_cuts_render_" + sw::number(c.row.cut.pavilion_angle) + "_" + view +
+                                                  "_tilt" + sw::number(tilt) + ".png";
+                            write_image(dir + "/" + f, img);
+                            tilt_panels.push_back({f, sw::number(c.row.cut.pavilion_angle) + "°, tilt " + sw::number(tilt) + "°"});
+                        }
+            if (tilt_panels.empty()) continue;
+            // The ASET series keeps its name (gem_cuts_tilts), the others carry the view's.
+            const std::string name = view == "aset" ? std::string("gem_cuts_tilts") : "gem_cuts_tilts_" + view;
+            image_grid_figure(dir, name, static_cast<int>(r.renders.size()), static_cast<int>(render_tilts().size()),
+                              tilt_panels, "The same cuts in " + view + ", the stone tilted 0, 10, 20 and 30 degrees", 1.0,
                               r.quick ? 120 : 200);
-            s << "\nThe tilt series `gem_cuts_tilts.png` / `.pdf`: the same three cuts in ASET, the stone tilted by "
-                 "0°, 10°, 20° and 30° about the image's horizontal axis (the viewer fixed).\n";
+            s << "\nThe " << view << " tilt series `" << name << ".png` / `.pdf`: the same three cuts in " << view
+              << ", the stone tilted by 0°, 10°, 20° and 30° about the image's horizontal axis (the viewer fixed).\n";
         }
     }
 

@@ -9,7 +9,9 @@
 namespace refract::gem_metrics {
 
 bool shows_nail_head(const Metric& m) { return m.value >= kNailHeadThreshold; }
+bool nail_head_decided(const Metric& m) { return std::fabs(m.value - kNailHeadThreshold) >= 2 * m.error; }
 bool shows_fish_eye(const Metric& m) { return m.value >= kFishEyeThreshold; }
+bool shows_obstruction(const Metric& m) { return m.value >= kObstructionThreshold; }
 
 Detectors::Detectors(const Gem& gem)
     : stone_(std::make_shared<const Shape>(tracing_shape(gem))), hit_facet_(hit_facets(gem)) {
@@ -29,6 +31,7 @@ Detectors::Detectors(const Gem& gem)
 }
 
 void Detectors::add(const Ray& eye_ray, double head_weight, double girdle_weight) {
+    face_head_.add(head_weight);  // every eye ray meets the stone (gem_metrics.cpp eye_sample)
     if (table_ < 0) return;
     const auto hit = intersect(*stone_, eye_ray, 0.0, 1e30);
     if (!hit) return;
@@ -50,6 +53,8 @@ Metric Detectors::nail_head() const {
     return {centre_head_.mean() - rest_head_.mean(),
             std::sqrt(centre_head_.variance_of_mean() + rest_head_.variance_of_mean())};
 }
+
+Metric Detectors::obstruction() const { return face_head_.metric(); }
 
 Metric Detectors::fish_eye() const { return {table_girdle_.mean(), std::sqrt(table_girdle_.variance_of_mean())}; }
 

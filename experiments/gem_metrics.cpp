@@ -103,8 +103,9 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     std::vector<double> cos_also;
     for (const std::string& name : o.also_observers) {
         const Observer& x = find_observer(name);
-        if (x.tilts_deg.size() != 1)
-            throw InputError("also_observers: '" + name + "' tilts the stone; only face-up models can share the rays");
+        if (traces_own_rays(x))
+            throw InputError("also_observers: '" + name +
+                             "' traces eye rays of its own (tilts, two eyes); only one-eye face-up models can share the rays");
         cos_also.push_back(head_cosine(x));
     }
     const size_t NA = cos_also.size();
@@ -172,13 +173,32 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
                 if (e.kind >= 0 && t.kind_regions()[static_cast<size_t>(e.kind)] == Region::Crown)
                     returned += e.weight * observer_radiance(e.dir, up, te.viewer, cos_head);
         }
+        // Two eyes (gem_observer.h): the light return of an eye ray from each eye, each eye's
+        // sample of its own (streams 24, 25), the eyes side by side along the stone's x axis;
+        // the cyclopean ray above gives the rest (leakage, balance, detectors).
+        if (observer.eye_half_angle_deg > 0) {
+            returned = 0;
+            const double half = observer.eye_half_angle_deg * M_PI / 180.0;
+            for (const int side : {-1, 1}) {
+                // eye_sample turns the drawn viewer v by turnᵀ: the eye at R(side·half)·v.
+                const Eigen::Matrix3d turn = Eigen::AngleAxisd(-side * half, Vec3::UnitY()).toRotationMatrix();
+                const EyeSample eye_k = eye_sample(gem, o.seed, side < 0 ? 24 : 25, i, o.viewer_cone_deg, o.frame, &turn);
+                const Vec3 other = Eigen::AngleAxisd(-2.0 * side * half, Vec3::UnitY()) * eye_k.viewer;
+                t.trace(eye_k.ray, band, exits);
+                for (const auto& e : exits)
+                    if (e.kind >= 0 && t.kind_regions()[static_cast<size_t>(e.kind)] == Region::Crown)
+                        returned += 0.5 * e.weight * observer_radiance(e.dir, kUp, eye_k.viewer, other, cos_head);
+            }
+        }
         lr.add(returned / static_cast<double>(observer.tilts_deg.size()));
         leak.add(pav);
     }
-    // The nail-head's central zone: eye rays of its own (stream 4), a quarter as many as the
-    // light return's, each viewer drawn as theirs, face-up (gem_detectors.h).
+    // The nail-head's central zone: eye rays of its own (stream 4), centre_share as many as
+    // the light return's (a quarter by default), each viewer drawn as theirs, face-up
+    // (gem_detectors.h).
+    const int NC = std::max(4, static_cast<int>(N * o.centre_share));  // N / 4 by default
     if (detectors.has_table())
-        for (int i = 0; i < std::max(4, N / 4); ++i) {
+        for (int i = 0; i < NC; ++i) {
             Rng rng(o.seed, 4, static_cast<std::uint64_t>(i));
             Vec3 v(0, 0, 1);
             if (o.viewer_cone_deg > 0) {
@@ -204,8 +224,9 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
     m.leakage = leak.metric();
     m.nail_head = detectors.nail_head();
     m.fish_eye = detectors.fish_eye();
+    m.obstruction = detectors.obstruction();
     for (size_t j = 0; j < NA; ++j)
-        m.also.push_back({o.also_observers[j], lr_also[j].metric(), det_also[j].nail_head()});
+        m.also.push_back({o.also_observers[j], lr_also[j].metric(), det_also[j].nail_head(), det_also[j].obstruction()});
     for (double* v : {&m.balance.crown, &m.balance.girdle, &m.balance.pavilion, &m.balance.lost, &m.balance.missed,
                       &m.aset.red, &m.aset.green, &m.aset.blue, &m.aset.white})
         *v /= N;

@@ -30,6 +30,9 @@ struct MetricOptions {
     // traced at every wavelength; scintillation rays/4 pixels, each at three tilts.
     int fire_divisor = 16;
     int scintillation_divisor = 4;
+    // The nail-head's central-zone eye rays: rays × centre_share of them (at least 4);
+    // the detector maps raise it (experiments/gem_detectors.h).
+    double centre_share = 0.25;
     double tilt_deg = 2.0;    // scintillation: the small tilt of the stone
     int spot_rotations = 32;  // fire, scintillation: the spot layout turned about the axis
     // The viewer's eye, drawn per eye ray uniformly over the directions within this angle
@@ -85,9 +88,11 @@ struct GemMetrics {
     Metric scintillation;  // pattern change under small tilts
     // The face-up detectors (experiments/gem_detectors.h), from the light-return eye rays:
     // nail-head (the table's centre dark under the observer's head) and fish-eye (the
-    // share of the table's light leaving through the girdle).
+    // share of the table's light leaving through the girdle), and obstruction (the share of
+    // the whole face's light that comes from the observer's head).
     Metric nail_head;
     Metric fish_eye;
+    Metric obstruction;
     // Leakage per facet kind, facet_kind() names: always "girdle", "lower half",
     // "pavilion main", "culet" in this order (0 where the cut has none); `leakage` sums the
     // last three (the pavilion), the girdle is listed apart.
@@ -112,10 +117,11 @@ struct GemMetrics {
     std::vector<std::pair<double, double>> fire_spectrum;
     int light_return_rays = 0, fire_pixels = 0, scintillation_pixels = 0;  // as traced
     std::string observer;  // MetricOptions::observer the light return was measured under
-    // MetricOptions::also_observers in order: the light return and nail-head under each.
+    // MetricOptions::also_observers in order: the light return, nail-head and obstruction
+    // under each.
     struct UnderObserver {
         std::string observer;
-        Metric light_return, nail_head;
+        Metric light_return, nail_head, obstruction;
     };
     std::vector<UnderObserver> also;
 };
@@ -161,6 +167,7 @@ struct Fields<gem_metrics::GemMetrics> {
         return std::make_tuple(field("light_return", &G::light_return), field("fire", &G::fire),
                                field("leakage", &G::leakage), field("scintillation", &G::scintillation),
                                field("nail_head", &G::nail_head), field("fish_eye", &G::fish_eye),
+                               field("obstruction", &G::obstruction),
                                field("leakage_by_kind", &G::leakage_by_kind), field("balance", &G::balance),
                                field("aset", &G::aset), field("rays", &G::light_return_rays),
                                field("fire_pixels", &G::fire_pixels), field("scintillation_pixels", &G::scintillation_pixels),

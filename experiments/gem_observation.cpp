@@ -121,6 +121,7 @@ void validate(const MetricOptions& o) {
     if (o.fire_divisor < 1 || o.fire_divisor > o.rays) bad("fire_divisor", o.fire_divisor, "1..rays");
     if (o.scintillation_divisor < 1 || o.scintillation_divisor > o.rays)
         bad("scintillation_divisor", o.scintillation_divisor, "1..rays");
+    if (!(o.centre_share > 0 && o.centre_share <= 64)) bad("centre_share", o.centre_share, "(0, 64]");
     if (!(o.tilt_deg > 0 && o.tilt_deg <= 45)) bad("tilt_deg", o.tilt_deg, "(0, 45]");
     if (!(o.viewer_cone_deg >= 0 && o.viewer_cone_deg <= 45)) bad("viewer_cone_deg", o.viewer_cone_deg, "[0, 45]");
     if (o.spot_rotations < 1 || o.spot_rotations > 4096) bad("spot_rotations", o.spot_rotations, "1..4096");

@@ -27,6 +27,11 @@ const std::vector<Observer>& observers() {
         {"tilt", kHeadDeg, false, {0.0, 10.0, 20.0, 30.0},
          "the stone tilted 0, 10, 20 and 30 deg and the light return averaged, as GIA's WLR averages over "
          "positions (Hemphill et al., G&G 34(3) 1998); the tilts and the aset head are refract's own choice"},
+        {"binocular", kHeadDeg, false, {0.0},
+         "two eyes 64 mm apart (about the adult mean interpupillary distance, 63 mm in Dodgson, Proc. SPIE 5291, "
+         "2004) at 250 mm (the conventional least distance of distinct vision), each eye with ASET's 15 deg head "
+         "cone, the light return averaged over the two eyes; the head as the union of the two cones is refract's own",
+         eye_half_angle_deg(64.0, 250.0)},
     };
     return o;
 }
@@ -51,5 +56,15 @@ double head_cosine(const Observer& o) {
 double observer_radiance(const Vec3& d, const Vec3& up, const Vec3& viewer, double cos_head) {
     return d.dot(up) > 0.0 && d.dot(viewer) < cos_head ? 1.0 : 0.0;
 }
+
+double observer_radiance(const Vec3& d, const Vec3& up, const Vec3& eye, const Vec3& other_eye, double cos_head) {
+    return d.dot(up) > 0.0 && d.dot(eye) < cos_head && d.dot(other_eye) < cos_head ? 1.0 : 0.0;
+}
+
+double eye_half_angle_deg(double separation_mm, double distance_mm) {
+    return std::atan(0.5 * separation_mm / distance_mm) / kDeg;
+}
+
+bool traces_own_rays(const Observer& o) { return o.tilts_deg.size() != 1 || o.eye_half_angle_deg > 0; }
 
 }  // namespace refract::gem_metrics

@@ -26,14 +26,19 @@ struct Observer {
     // over them; {0}: face-up only.
     std::vector<double> tilts_deg{0.0};
     std::string source;  // the publication the set-up follows, and what is refract's own
+    // Two eyes: each eye's direction eye_half_angle_deg from the drawn viewer direction on
+    // either side (about the stone frame's y axis: the eyes side by side along x), each eye
+    // ray traced from its own eye, the light return averaged over the two; the head blocks
+    // the directions within head_deg of either eye. 0: one eye.
+    double eye_half_angle_deg = 0.0;
 };
 
-// The named set-ups, "aset" (the default) first: aset, sasian, hemisphere, tilt.
+// The named set-ups, "aset" (the default) first: aset, sasian, hemisphere, tilt, binocular.
 const std::vector<Observer>& observers();
-// "aset, sasian, hemisphere or tilt".
+// "aset, sasian, hemisphere, tilt or binocular".
 std::string observer_names_text();
 // The set-up called `name`; InputError "observer 'NAME': expected aset, sasian,
-// hemisphere or tilt" for any other (callers prefix their option or field).
+// hemisphere, tilt or binocular" for any other (callers prefix their option or field).
 const Observer& find_observer(const std::string& name);
 
 // The cosine the head test compares with: cos(head_deg) for an eye, +infinity (nothing
@@ -44,5 +49,14 @@ double head_cosine(const Observer& o);
 // the head cone about `viewer` (d·viewer >= cos_head), else 0 (gem_observation.h
 // diffuse_with_head with the model's head).
 double observer_radiance(const Vec3& d, const Vec3& up, const Vec3& viewer, double cos_head);
+// The binocular observer's: 1 above the horizon unless within the head cone about either
+// eye (d·eye >= cos_head or d·other_eye >= cos_head), else 0.
+double observer_radiance(const Vec3& d, const Vec3& up, const Vec3& eye, const Vec3& other_eye, double cos_head);
+// The half-angle two eyes `separation_mm` apart subtend at a stone `distance_mm` away, in
+// degrees: atan(separation / 2 / distance).
+double eye_half_angle_deg(double separation_mm, double distance_mm);
+// Whether the model's light return needs eye rays of its own (tilts, two eyes): such a
+// model cannot share another model's rays (MetricOptions::also_observers).
+bool traces_own_rays(const Observer& o);
 
 }  // namespace refract::gem_metrics

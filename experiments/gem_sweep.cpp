@@ -187,7 +187,7 @@ void set_axis(Grid& grid, const Axis& axis) {
 }
 
 std::string fingerprint(const Sweep& s) {
-    std::string f = "refract sweep brilliant v4";  // v2: the ASET and balance columns; v3: the observer; v4: the detectors
+    std::string f = "refract sweep brilliant v5";  // v2: the ASET and balance columns; v3: the observer; v4: the detectors; v5: obstruction
     for (const Axis& a : s.grid.axes) f += " " + a.name + "=" + a.text();
     const BrilliantCut& b = s.grid.base;
     f += " culet=" + number(b.culet) + " girdle_facets=" + std::to_string(b.girdle_facets) +

@@ -38,6 +38,8 @@ const std::vector<Field>& fields() {
         REFRACT_NUMBER("nail_head_error", r.metrics.nail_head.error),
         REFRACT_NUMBER("fish_eye", r.metrics.fish_eye.value),
         REFRACT_NUMBER("fish_eye_error", r.metrics.fish_eye.error),
+        REFRACT_NUMBER("obstruction", r.metrics.obstruction.value),
+        REFRACT_NUMBER("obstruction_error", r.metrics.obstruction.error),
         Field{"leakage_by_kind", kinds},
         REFRACT_NUMBER("aset_red", r.metrics.aset.red),
         REFRACT_NUMBER("aset_green", r.metrics.aset.green),

@@ -48,7 +48,9 @@ TEST_CASE("Nail-head detector fires on a 43.75 degree pavilion and not on Tolkow
     CHECK(steep.nail_head.error > 0);
     CHECK(steep.nail_head.error < 0.1);
     CHECK(shows_nail_head(tolkowsky_with_pavilion(42.5, 1024, "sasian").nail_head));
-    // ASET's 15 deg head: the centre's exit falls inside it only above about 43.4 deg.
+    // ASET's 15 deg head: the centre's exit falls inside it only above about 43.4 deg
+    // (at 16384 rays, 4096 of them central: 0.421 +- 0.006 at 43.75, 0.062 +- 0.002 at 43.25,
+    // 0.248 +- 0.006 at 40.75, the threshold 0.35).
     CHECK(shows_nail_head(tolkowsky_with_pavilion(43.75, 1024, "aset").nail_head));
     CHECK_FALSE(shows_nail_head(tolkowsky_with_pavilion(43.25, 1024, "aset").nail_head));
     CHECK_FALSE(shows_nail_head(tolkowsky_with_pavilion(40.75, 1024, "aset").nail_head));
@@ -81,6 +83,40 @@ TEST_CASE("Nail-head detector sees the head: a larger head darkens the centre, t
     CHECK(sasian.fish_eye.value == aset.fish_eye.value);
 }
 
+TEST_CASE("Obstruction detector: ASET's head sends 0.18 of Tolkowsky's face light, 0.29 at a 38.75 degree pavilion, "
+          "Sasian's head 0.59, the whole hemisphere none",
+          "[gem][detectors]") {
+    // Measured (1024 rays, 3 bands): aset 40.75 0.1846 +- 0.0091, 38.75 0.2937 +- 0.0111,
+    // 43.75 0.0896 +- 0.0070; sasian 40.75 0.5876 +- 0.0110; at 16384 rays 0.186, 0.269, 0.089, 0.616.
+    const GemMetrics tolk = tolkowsky_with_pavilion(40.75, 1024), shallow = tolkowsky_with_pavilion(38.75, 1024),
+                     deep = tolkowsky_with_pavilion(43.75, 1024),
+                     sasian = tolkowsky_with_pavilion(40.75, 1024, "sasian"),
+                     hemi = tolkowsky_with_pavilion(40.75, 256, "hemisphere");
+    CHECK(tolk.obstruction.value == Approx(0.1846).margin(1e-3));
+    CHECK(tolk.obstruction.error == Approx(0.0091).margin(1e-3));
+    CHECK(shallow.obstruction.value == Approx(0.2937).margin(1e-3));
+    CHECK(deep.obstruction.value == Approx(0.0896).margin(1e-3));
+    CHECK(sasian.obstruction.value == Approx(0.5876).margin(1e-3));
+    CHECK_FALSE(shows_obstruction(tolk.obstruction));
+    CHECK(shows_obstruction(shallow.obstruction));
+    CHECK_FALSE(shows_obstruction(deep.obstruction));
+    CHECK(shows_obstruction(sasian.obstruction));
+    // The same eye rays: the 40 deg head blocks all the 15 deg head does, ray by ray.
+    CHECK(sasian.obstruction.value >= tolk.obstruction.value);
+    CHECK(hemi.obstruction.value == 0.0);
+    CHECK_FALSE(shows_obstruction(hemi.obstruction));
+}
+
+TEST_CASE("Nail-head decision at two standard errors: a value within 2 sigma of the threshold is undecided",
+          "[gem][detectors]") {
+    CHECK(nail_head_decided({0.421, 0.006}));
+    CHECK(shows_nail_head({0.421, 0.006}));
+    CHECK_FALSE(nail_head_decided({0.339, 0.012}));  // measured: crown 37, pavilion 38.75, aset
+    CHECK(nail_head_decided({0.248, 0.006}));
+    CHECK_FALSE(shows_nail_head({0.248, 0.006}));
+    CHECK(nail_head_decided({0.0, 0.0}));  // no head: decided, none
+}
+
 TEST_CASE("gem-cuts optimum on the grid's edge is said to be, one inside is not", "[gem][findings]") {
     sw::Grid g = sw::single_cut_grid(brilliant_preset("gia-default"));
     sw::set_axis(g, sw::parse_axis("crown_angle", "23:41:1"));
@@ -99,6 +135,30 @@ TEST_CASE("gem-cuts optimum on the grid's edge is said to be, one inside is not"
     o.edge = gc::edge_of(g, o.best.cut);
     CHECK_FALSE(o.edge.any());
     CHECK(gc::optimum_sentence(o, g).find("lies inside the grid") != std::string::npos);
+    // Where the grid ends at the cut builder's limit (pavilion up to 43.8, crown from 20:
+    // a step beyond is refused), the sentence says so instead of calling the distance a
+    // lower bound.
+    sw::set_axis(g, sw::parse_axis("crown_angle", "20:41:1"));
+    sw::set_axis(g, sw::parse_axis("pavilion_angle", "38:43.75:0.25"));
+    o.best.cut.crown_angle = 20;
+    o.best.cut.pavilion_angle = 43.75;
+    o.edge = gc::edge_of(g, o.best.cut);
+    o.builder_limit = gc::builder_limits(g, o.best.cut, o.edge);
+    CHECK(o.builder_limit.crown_low);
+    CHECK(o.builder_limit.pavilion_high);
+    CHECK(gc::optimum_sentence(o, g).find("(crown 20°, the grid's shallowest, the cut builder's limit and pavilion "
+                                          "43.75°, the grid's steepest, the cut builder's limit): the grid ends there") !=
+          std::string::npos);
+    o.best.cut.crown_angle = 41;  // the steepest crown the builder takes is 41.5: 42 is refused
+    o.edge = gc::edge_of(g, o.best.cut);
+    o.builder_limit = gc::builder_limits(g, o.best.cut, o.edge);
+    CHECK(o.builder_limit.crown_high);
+    sw::set_axis(g, sw::parse_axis("crown_angle", "20:40:1"));  // 41 can be built: the old sentence
+    o.best.cut.crown_angle = 40;
+    o.edge = gc::edge_of(g, o.best.cut);
+    o.builder_limit = gc::builder_limits(g, o.best.cut, o.edge);
+    CHECK_FALSE(o.builder_limit.crown_high);
+    CHECK(gc::optimum_sentence(o, g).find("a lower bound") != std::string::npos);
 }
 
 TEST_CASE("gem-cuts detector onsets: the nail-head from the steepest firing run, the fish-eye up to the shallowest",

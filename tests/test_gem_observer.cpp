@@ -98,6 +98,38 @@ TEST_CASE("Gem observer: Tolkowsky's light return averaged over tilts of 0, 10, 
     CHECK(tilt.leakage.value == aset.leakage.value);  // measured face-up, as before
 }
 
+TEST_CASE("Gem observer: two eyes 64 mm apart at 250 mm, each with ASET's head cone, see less of Tolkowsky's light "
+          "than one eye and more than Sasian's 40 degree head",
+          "[gem-metrics][observer]") {
+    CHECK(eye_half_angle_deg(64.0, 250.0) == Approx(7.2942).margin(1e-4));  // atan(32 / 250)
+    CHECK(find_observer("binocular").eye_half_angle_deg == Approx(eye_half_angle_deg(64.0, 250.0)));
+    CHECK(traces_own_rays(find_observer("binocular")));
+    CHECK_FALSE(traces_own_rays(find_observer("sasian")));
+    // The head blocks within 15 deg of either eye (each 7.29 deg off the axis along x): a
+    // direction 10 deg from the left eye is blocked; one tilted 18.5 deg from the axis towards
+    // y, 19.9 deg from each eye, is not.
+    const double h = eye_half_angle_deg(64.0, 250.0) * M_PI / 180, c15 = std::cos(15 * M_PI / 180);
+    const Vec3 left(-std::sin(h), 0, std::cos(h)), right(std::sin(h), 0, std::cos(h)), up(0, 0, 1);
+    const double a = (-h + 10 * M_PI / 180);
+    CHECK(observer_radiance(Vec3(std::sin(a), 0, std::cos(a)), up, left, right, c15) == 0.0);
+    const double b = 18.5 * M_PI / 180;
+    CHECK(observer_radiance(Vec3(0, std::sin(b), std::cos(b)), up, left, right, c15) == 1.0);
+    // Measured (512 rays, 5 bands): aset 0.7285 +- 0.0138, binocular 0.6618 +- 0.0099, sasian
+    // 0.2887 +- 0.0130: the union of two 15 deg cones 14.6 deg apart hides more of the
+    // near-axis light than one cone, far less than a 40 deg cone.
+    const GemMetrics aset = under("aset", 512), two = under("binocular", 512), sasian = under("sasian", 512);
+    CHECK(two.light_return.value == Approx(0.6618).margin(1e-3));
+    CHECK(two.light_return.value < aset.light_return.value - 3 * two.light_return.error);
+    CHECK(two.light_return.value > sasian.light_return.value + 3 * std::hypot(two.light_return.error, sasian.light_return.error));
+    // Only the light return: the cyclopean eye ray gives the rest.
+    CHECK(two.leakage.value == aset.leakage.value);
+    CHECK(two.nail_head.value == aset.nail_head.value);
+    CHECK(two.observer == "binocular");
+    MetricOptions o;
+    o.also_observers = {"binocular"};
+    CHECK_THROWS_AS(measure(build_brilliant(brilliant_preset("tolkowsky")), o), InputError);
+}
+
 TEST_CASE("Gem observer: an unknown observer is refused with the names listed", "[gem-metrics][observer]") {
     MetricOptions o;
     o.observer = "cyclops";
@@ -105,7 +137,7 @@ TEST_CASE("Gem observer: an unknown observer is refused with the names listed", 
         validate(o);
         FAIL("accepted");
     } catch (const InputError& e) {
-        CHECK(std::string(e.what()) == "gem metrics: observer 'cyclops': expected aset, sasian, hemisphere or tilt");
+        CHECK(std::string(e.what()) == "gem metrics: observer 'cyclops': expected aset, sasian, hemisphere, tilt or binocular");
     }
     CHECK(observers().front().name == "aset");
     for (const Observer& m : observers()) CHECK_FALSE(m.source.empty());
@@ -117,7 +149,7 @@ TEST_CASE("refract metrics and refract sweep take --observer: an unknown name ex
     const fs::path dir = test::fresh_dir("gem-observer", "cli");
     const std::string design = std::string(REFRACT_SOURCE_DIR) + "/scenes/gems/designs/emerald.asc";
     const std::string fast = " --rays 64 --wavelengths 3";
-    const std::string names = "--observer 'cyclops': expected aset, sasian, hemisphere or tilt";
+    const std::string names = "--observer 'cyclops': expected aset, sasian, hemisphere, tilt or binocular";
     test::check_refused(test::run("metrics " + design + fast + " --observer cyclops", dir), names);
     test::check_refused(
         test::run("sweep brilliant --preset tolkowsky" + fast + " --observer cyclops -o " + (dir / "b.csv").string(), dir),

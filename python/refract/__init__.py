@@ -200,7 +200,7 @@ def gem_metrics(preset=None, rays=4096, exact_polarisation=True, material="diamo
     The cut as for cut_brilliant (preset, then params over it). rays: light-return eye rays
     (fire and scintillation pixels scale with it); exact_polarisation False: natural light;
     material: a catalogue name or a constant index ("2.417"); seed: the cut's own stream.
-    Returns a dict: light_return, fire, leakage, scintillation, nail_head, fish_eye (each
+    Returns a dict: light_return, fire, leakage, scintillation, nail_head, fish_eye, obstruction (each
     {"value", "error"}, one standard error; docs/gem-metrics.md), leakage_by_kind, balance (crown, girdle, pavilion, lost, missed),
     aset (red, green, blue, white shares),
     cut, rays, fire_pixels, scintillation_pixels. Single-threaded, deterministic."""
