@@ -182,7 +182,7 @@ GemMetrics measure(const Gem& gem, const MetricOptions& o) {
             for (const int side : {-1, 1}) {
                 // eye_sample turns the drawn viewer v by turnᵀ: the eye at R(side·half)·v.
                 const Eigen::Matrix3d turn = Eigen::AngleAxisd(-side * half, Vec3::UnitY()).toRotationMatrix();
-                const EyeSample eye_k = eye_sample(gem, o.seed, side < 0 ? 24 : 25, i, o.viewer_cone_deg, o.frame, &turn);
+                const EyeSample eye_k = eye_sample(stone, o.seed, side < 0 ? 24 : 25, i, o.viewer_cone_deg, o.frame, &turn);
                 const Vec3 other = Eigen::AngleAxisd(-2.0 * side * half, Vec3::UnitY()) * eye_k.viewer;
                 t.trace(eye_k.ray, band, exits);
                 for (const auto& e : exits)

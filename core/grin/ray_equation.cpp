@@ -190,9 +190,12 @@ void finish(Result& r, const State<N>& y, const State<N>& f, Status status, long
 
 // The first crossing of a step's dense output (θ from 0, the step's start, to 1) with the
 // surfaces inside (Settings::obstacles): the polyline of kObstacleChords chords in order,
-// then, in the first chord that meets one, bisection on θ (each time the chord from the
-// last point known before the crossing to the middle), and a last call on the final chord,
-// whose hit is reported: θ and the point there, on the surface.
+// then, in the first chord that meets one, bisection on θ, each time the chord from the
+// last point known before the crossing to the middle. The crossing reported is the last
+// chord that met a surface (θ and the point there, on the surface): near the surface its
+// own test can no longer tell a start just before it from one just past it (a sphere of
+// the Earth's size resolves heights of about 1e-9 m), so a chord said to miss may have
+// crossed, and the last hit, not the bisection's end, is what is known.
 struct Crossing {
     double theta;
     Vec3 point;
@@ -206,32 +209,26 @@ std::optional<Crossing> obstacle_crossing(const Obstacles& obs, const Step<N>& s
     for (int k = 1; k <= kObstacleChords; ++k) {
         const double end = static_cast<double>(k) / kObstacleChords;
         const Vec3 b = k == kObstacleChords ? Vec3(st.y1.template head<3>()) : pos(end);
-        std::optional<ObstacleHit> h = obs.first(a, b);
+        const std::optional<ObstacleHit> h = obs.first(a, b);
         if (!h) {
             lo = end;
             a = b;
             continue;
         }
+        Crossing best{lo + h->fraction * (end - lo), a + h->fraction * (b - a), h->id};
         double hi = end;
-        Vec3 bh = b;
         for (int it = 0; it < 40; ++it) {
             const double mid = 0.5 * (lo + hi);
             const Vec3 m = pos(mid);
-            if (obs.first(a, m)) {
+            if (const auto hm = obs.first(a, m)) {
+                best = Crossing{lo + hm->fraction * (mid - lo), a + hm->fraction * (m - a), hm->id};
                 hi = mid;
-                bh = m;
             } else {
                 lo = mid;
                 a = m;
             }
         }
-        if (const auto last = obs.first(a, bh))
-            return Crossing{lo + last->fraction * (hi - lo), a + last->fraction * (bh - a), last->id};
-        // Rounding: the final chord grazed past the surface; the chord of the whole piece,
-        // known to meet it, from the last point before.
-        if (const auto whole = obs.first(a, b))
-            return Crossing{lo + whole->fraction * (end - lo), a + whole->fraction * (b - a), whole->id};
-        return std::nullopt;
+        return best;
     }
     return std::nullopt;
 }

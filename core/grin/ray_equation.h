@@ -53,9 +53,9 @@ struct Settings {
     // Non-null: surfaces inside the region that end the ray where it first meets one
     // (Status::met_obstacle). Each accepted step's dense output is tested as a polyline of
     // kObstacleChords chords, in order; in the first chord that meets a surface the crossing
-    // is found by bisection on the dense output (each half tested as a chord), to 2^-40 of
-    // the chord. The last first() call that returns a hit is the crossing reported (its
-    // caller may keep what it found there). Null: the integrator runs as without it, to the bit.
+    // is found by bisection on the dense output (each half tested as a chord, 40 halvings).
+    // The last first() call that returns a hit is the crossing reported (its caller may
+    // keep what it found there). Null: the integrator runs as without it, to the bit.
     const Obstacles* obstacles = nullptr;
 };
 inline constexpr int kObstacleChords = 4;
