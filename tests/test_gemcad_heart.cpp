@@ -134,7 +134,7 @@ TEST_CASE("The heart is its convex preform less the notch: closed, convex except
 }
 
 TEST_CASE("A vertical ray into the heart's cleft passes through the notch: the preform stops it, the heart and its "
-          "tracer do not; a ray through a lobe meets both alike",
+          "tracer do not, and a ray through a lobe meets both alike",
           "[gemcad][heart]") {
     const GemcadDesign design = read_gemcad(heart_path());
     const DesignGem d = build_design(design);
