@@ -259,8 +259,9 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
                       ? std::string("every cut of the detector grid is decided at 2σ: none lies within two standard "
                                     "errors of the nail-head threshold.")
                       : std::to_string(o.nail_head_undecided) +
-                            " cuts of the detector grid lie within two standard errors of the nail-head threshold "
-                            "(orange in the map): undecided at this ray count.")
+                            (o.nail_head_undecided == 1 ? " cut of the detector grid lies" : " cuts of the detector grid lie") +
+                            " within two standard errors of the nail-head threshold (orange in the map): undecided at "
+                            "this ray count.")
               << "\n";
     s << "\n(\"none\": the detector does not fire at the grid's steepest, or shallowest, pavilion. The fish-eye does "
          "not depend on the observer: the same eye rays, the same exits.) Tolkowsky's own cut has a knife-edge girdle "
@@ -282,8 +283,8 @@ void write_observers(const Result& r, const std::string& dir, std::ostream& s) {
         else if (c.firing == c.cuts) s << "every cut of the detector grid shows obstruction" << range << ": the head hides a large share of every face.";
         else s << c.firing << " of " << c.cuts << " cuts of the detector grid show obstruction" << range << ".";
         if (c.near > 0)
-            s << " " << c.near << " of the " << c.cuts
-              << " lie within two standard errors of the threshold, undecided at this ray count (the threshold is a "
+            s << " " << c.near << " of the " << c.cuts << (c.near == 1 ? " lies" : " lie")
+              << " within two standard errors of the threshold, undecided at this ray count (the threshold is a "
                  "convention on a smoothly varying share: read the map's values).";
         for (const auto& x : o.phenomena)
             if (x.possible && std::fabs(x.cut.crown_angle - 34.5) < 1e-9 && std::fabs(x.cut.pavilion_angle - 40.75) < 1e-9)

@@ -176,6 +176,17 @@ struct ViewStudy {
     bool finite = false;
 };
 
+// The rendered upper limb of the setting sun (view "sunset_limb_view"), down its centre
+// column: the first lit pixel's colour, and the angle from it to the first pixel whose red
+// is at least half its largest channel (the coloured rim above the white disc).
+struct SunsetLimb {
+    bool found = false;
+    Vec3 top_rgb = Vec3::Zero();
+    double rim_arcsec = 0;
+    bool blue_on_top = false;  // the top pixel bluer than it is red or green
+};
+SunsetLimb sunset_limb(const ViewStudy& v);
+
 // 7. Heat shimmer (experiments/grin_shimmer.cpp): a warm turbulent plume over a road as a
 // sampled temperature grid; the target points' apparent displacement against the plume's
 // amplitude, and a view through the field written as OpenVDB and read by the scene.
@@ -214,6 +225,8 @@ struct Findings {
     bool tolerance_proportional = false;  // every tol slope in [0.8, 1.2]
     bool fifth_order = false;             // every fixed-step order in [4.5, 5.5]
     bool views_complete = false;          // every view finite, no ray out of steps
+    bool limb_blue_on_top = false;        // the rendered upper limb: blue first, red only lower down
+    SunsetLimb limb;                      // what the limb view shows (sunset_limb)
     bool shimmer_linear = false;          // the displacement's exponent within 0.05 of 1
     bool shimmer_vdb_same = false;        // the .vdb read back: same grid, index within 1e-9
 };
@@ -248,6 +261,8 @@ SunStudy sun_study(bool quick);
 RefractionStudy refraction_study(bool quick);
 ConvergenceStudy convergence_study(bool quick);
 std::vector<ViewStudy> view_study(bool quick, int threads);
+// Its last two: the setting sun whole and its upper limb (sunset_view, sunset_limb_view).
+std::vector<ViewStudy> sunset_views(bool quick, int threads);
 // One rendered view: `scene` (kept in the result) as `parsed` (read from it, with the file
 // name its relative paths resolve against), its image, time and GRIN counters.
 ViewStudy render_view(const std::string& name, const std::string& title, const nlohmann::json& scene,

@@ -355,7 +355,19 @@ void write(const Result& r, const std::string& dir) {
            << gfmt(v.seconds, 3) << " | " << v.grin_segments << " | " << v.grin_evaluations << " | " << v.grin_exhausted
            << " |\n";
     }
-    md << "\n" << write_shimmer(r.shimmer, f, dir);
+    md << "\n"
+       << (f.limb_blue_on_top
+                   ? "The setting sun's upper limb, rendered by the spectral eye pass through the standard air "
+                     "(sunset_limb_view.png): its first lit pixel is blue (RGB " + gfmt(f.limb.top_rgb.x(), 3) + ", " +
+                             gfmt(f.limb.top_rgb.y(), 3) + ", " + gfmt(f.limb.top_rgb.z(), 3) + ") and red reaches half "
+                             "its strength " + gfmt(f.limb.rim_arcsec, 3) + "″ lower: the air refracts the short "
+                             "wavelengths more, so the limb's image splits, violet and blue above green above red. "
+                             "Seen by eye the blue and violet are scattered out along the long path (extinction is "
+                             "not modelled here), which leaves the green rim of the green flash.\n"
+                   : f.limb.found ? "The setting sun's rendered upper limb (sunset_limb_view.png) does not show blue above "
+                                    "red down its centre column.\n"
+                                  : "The setting sun's upper limb was not found in its rendered view.\n")
+       << "\n" << write_shimmer(r.shimmer, f, dir);
     write_text_atomic(path("summary.md"), md.str());
 }
 

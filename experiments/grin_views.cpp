@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 
+#include <refract/core/grin/atmosphere.h>
 #include <refract/core/render.h>
 #include <refract/core/scene_json.h>
+#include <refract/core/trace_record.h>
 #include <refract/experiments/grin.h>
+#include <refract/geometry/constants.h>
 
 namespace refract::experiments::grin_media {
 
@@ -59,6 +62,58 @@ ViewStudy render_view(const std::string& name, const std::string& title, const j
     return grin_media::render_view(name, title, scene, parse_scene(scene, name + ".json"), threads);
 }
 
+// The setting sun from 10 m over the sea (the scene in metres): the Earth a dark diffuse
+// sphere inside the 1976 standard air (the "earth-atmosphere" profile, dispersing by
+// Ciddor's index, to 100 km), the sun an emitter of the true angular radius (0.2666°) at
+// 1 au with its centre kSunTrueAltitude below the true horizon; the camera looks along +x at
+// apparent altitude `look_deg` with a horizontal field of `fov_deg`. Rendered by the
+// spectral eye pass (31 wavelengths): the root ray splits at the camera, inside the air.
+constexpr double kSunTrueAltitude = -0.3, kEyeHeight = 10.0;
+json sunset_scene(int w, int h, double look_deg, double fov_deg) {
+    const double au = 1.495978707e11, a = kSunTrueAltitude * kPi / 180, look = look_deg * kPi / 180;
+    return json{
+        {"camera",
+         {{"location", {0, kEyeHeight, 0}},
+          {"look_at", {1000 * std::cos(look), kEyeHeight + 1000 * std::sin(look), 0}},
+          {"angle", fov_deg},
+          {"width", w},
+          {"height", h}}},
+        {"background", {0.0, 0.0, 0.0}},
+        {"materials",
+         {{"air", {{"type", "grin"}, {"tolerance", 1e-9}, {"shadows", false}, {"profile", {{"kind", "earth-atmosphere"}}}}},
+          {"sea", {{"type", "diffuse"}, {"color", {0.05, 0.08, 0.12}}, {"ambient", 1.0}}},
+          {"sun", {{"type", "emissive"}, {"color", {0.8, 0.8, 0.8}}}}}},
+        {"objects",
+         json::array({{{"type", "sphere"}, {"center", {0, -grin::kEarthRadius_m, 0}}, {"radius", grin::kEarthRadius_m + 1e5},
+                       {"material", "air"}},
+                      {{"type", "sphere"}, {"center", {0, -grin::kEarthRadius_m, 0}}, {"radius", grin::kEarthRadius_m},
+                       {"material", "sea"}},
+                      {{"type", "sphere"},
+                       {"center", {au * std::cos(a), kEyeHeight + au * std::sin(a), 0}},
+                       {"radius", au * std::tan(0.2666 * kPi / 180)},
+                       {"material", "sun"}}})},
+        {"lights", json::array()}};
+}
+
+// The apparent altitude (degrees) of the sun's upper limb at `nm` straight ahead: the
+// highest ray from the eye whose tree ends on the sun (bisection to 1e-6°).
+double upper_limb_deg(const Scene& scene, double nm) {
+    const auto meets_sun = [&](double deg) {
+        const double e = deg * kPi / 180;
+        const TraceRecord rec = trace_ray(scene, Ray{Vec3(0, kEyeHeight, 0), Vec3(std::cos(e), std::sin(e), 0)}, nm);
+        for (const TraceSegment& seg : rec.segments)
+            if (seg.event == "emissive") return true;
+        return false;
+    };
+    double lo = 0.0, hi = 1.0;  // the sun's centre lies below 0.5°: its upper limb between
+    if (!meets_sun(lo) || meets_sun(hi)) return std::nan("");
+    while (hi - lo > 1e-6) {
+        const double mid = 0.5 * (lo + hi);
+        (meets_sun(mid) ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 }  // namespace
 
 ViewStudy render_view(const std::string& name, const std::string& title, const json& scene, const Scene& parsed,
@@ -83,8 +138,46 @@ ViewStudy render_view(const std::string& name, const std::string& title, const j
 
 std::vector<ViewStudy> view_study(bool quick, int threads) {
     const int w = quick ? 160 : 640, h = quick ? 120 : 480;
-    return {render_view("luneburg_view", "A Luneburg lens over a checker floor", luneburg_scene(w, h), threads),
+    std::vector<ViewStudy> v{
+            render_view("luneburg_view", "A Luneburg lens over a checker floor", luneburg_scene(w, h), threads),
             render_view("road_view", "An inferior mirage over a hot road", road_scene(w, h), threads)};
+    for (ViewStudy& s : sunset_views(quick, threads)) v.push_back(std::move(s));
+    return v;
+}
+
+std::vector<ViewStudy> sunset_views(bool quick, int threads) {
+    std::vector<ViewStudy> v;
+    // The setting sun, whole (1° across), and its upper limb (0.03° across, centred on the
+    // limb found at 550 nm): the spectral passes split its image, the violet and blue limb
+    // above, the red below.
+    const int sw = quick ? 48 : 96, sh = quick ? 36 : 72, lw = quick ? 32 : 64, lh = quick ? 24 : 48;
+    v.push_back(render_view("sunset_view", "The setting sun from 10 m over the sea, 1° across",
+                            sunset_scene(sw, sh, 0.2, 1.0), threads));
+    const double limb = upper_limb_deg(parse_scene(sunset_scene(4, 4, 0.2, 1.0), "sunset_view.json"), 550.0);
+    v.push_back(render_view("sunset_limb_view", "The setting sun's upper limb, 0.03° across (108″)",
+                            sunset_scene(lw, lh, std::isfinite(limb) ? limb : 0.42, 0.03), threads));
+    return v;
+}
+
+SunsetLimb sunset_limb(const ViewStudy& v) {
+    SunsetLimb l;
+    const Image& img = v.image;
+    const int x = img.width / 2;
+    const double pixel_arcsec = v.scene["camera"]["angle"].get<double>() * 3600.0 / img.width;
+    int first = -1, white = -1;
+    for (int y = 0; y < img.height; ++y) {
+        const Vec3 c = img.at(x, y);
+        if (first < 0 && c.sum() > 1e-3) {
+            first = y;
+            l.top_rgb = c;
+        }
+        if (first >= 0 && white < 0 && c.x() > 0.5 * c.maxCoeff()) white = y;
+    }
+    if (first < 0 || white < 0) return l;
+    l.found = true;
+    l.rim_arcsec = (white - first) * pixel_arcsec;
+    l.blue_on_top = l.top_rgb.z() > l.top_rgb.x() && l.top_rgb.z() > l.top_rgb.y();
+    return l;
 }
 
 }  // namespace refract::experiments::grin_media

@@ -75,7 +75,7 @@ TEST_CASE("grin experiment's rendered mirage: the ball 500 m down a hot road sho
           "through the renderer's own walk",
           "[experiments][grin]") {
     const std::vector<ViewStudy> views = view_study(true, 2);
-    REQUIRE(views.size() == 2);
+    REQUIRE(views.size() == 4);
     for (const ViewStudy& v : views) {
         CHECK(v.finite);
         CHECK(v.grin_exhausted == 0);
@@ -122,4 +122,21 @@ TEST_CASE("grin experiment's heat shimmer: the target's apparent displacement is
     CHECK(s.view.finite);
     CHECK(s.view.grin_exhausted == 0);
     CHECK(s.view.grin_segments > 0);
+}
+
+TEST_CASE("grin experiment's rendered sunset: the spectral eye pass from inside the air splits the sun's upper limb, "
+          "blue above red by tens of arcseconds",
+          "[experiments][grin]") {
+    const std::vector<ViewStudy> views = sunset_views(true, 2);
+    REQUIRE(views.size() == 2);
+    REQUIRE(views[1].name == "sunset_limb_view");
+    const SunsetLimb limb = sunset_limb(views[1]);
+    INFO("top pixel " << limb.top_rgb.transpose() << ", rim " << limb.rim_arcsec << " arcsec");
+    REQUIRE(limb.found);
+    CHECK(limb.blue_on_top);
+    // Near the horizon the air's refraction differs by about 30 arcseconds between 400 and
+    // 700 nm (the sun study's 520-650 nm split alone is 10-20): the rim from the first blue
+    // pixel to half-strength red is of that size, at 3.4 arcseconds a pixel.
+    CHECK(limb.rim_arcsec > 15);
+    CHECK(limb.rim_arcsec < 60);
 }

@@ -198,6 +198,25 @@ auto walk_spectral(const SceneTracer& tracer, const SpectralContext& ctx, const 
     SpectralEnds<P> ends(tracer, ctx, stats, bands);
     typename RayTreeWalkerT<P>::List list{TreeEntryT<P>{primary, Vec3(1, 1, 1)}};
     list.front().pol = start;
+    // A camera inside a dispersive gradient-index medium (an observer in the air): the
+    // curved root ray already depends on the wavelength, so it splits at once, each band
+    // walked from the camera with its own index (as the split at a first dispersive hit).
+    if (const grin::Medium* m = tracer.medium_of(primary, RayOrigin{})) {
+        const size_t mi = static_cast<size_t>(tracer.scene().objects[static_cast<size_t>(m->object)].material);
+        if (ctx.dispersive[mi]) {
+            ++stats.spectral_splits;
+            const std::uint64_t before = stats.segments;
+            for (const int band : ctx.split_bands[mi]) {
+                SpectralEnds<P> sub(tracer, ctx, stats, bands);
+                typename RayTreeWalkerT<P>::List one{list.front()};
+                one.front().band = static_cast<std::int16_t>(band);
+                walker.walk(one, sub);
+                ends.sum += tinted(ctx.weights[static_cast<size_t>(band)], sub.sum);
+            }
+            stats.wavelength_segments += stats.segments - before;
+            return ends.sum;
+        }
+    }
     walker.walk(list, ends);
     return ends.sum;
 }
