@@ -232,7 +232,9 @@ Findings judge(const Result& r) {
     for (const ViewStudy& v : r.views) {
         f.views_complete = f.views_complete && v.finite && v.grin_exhausted == 0;
         if (v.name == "sunset_limb_view") f.limb = sunset_limb(v);
+        if (v.name == "sea_view") f.ship = ship_image(v);
     }
+    f.sea_view_inverted = f.ship.inverted;
     f.limb_blue_on_top = f.limb.found && f.limb.blue_on_top && f.limb.rim_arcsec > 0;
     f.shimmer_linear = !r.shimmer.rows.empty() && std::abs(r.shimmer.exponent - 1.0) <= 0.05;
     f.shimmer_vdb_same = r.shimmer.vdb_dims_match && r.shimmer.vdb_max_index_difference <= 1e-9;

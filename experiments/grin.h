@@ -186,6 +186,14 @@ struct SunsetLimb {
     bool blue_on_top = false;  // the top pixel bluer than it is red or green
 };
 SunsetLimb sunset_limb(const ViewStudy& v);
+// The ship of the superior mirage's view ("sea_view") down its centre column (rows from
+// the top): the rows of its red hull and of its white superstructure; inverted when every
+// white row lies below every red one (the superstructure, on top of the hull, seen under it).
+struct ShipImage {
+    int red_top = -1, red_bottom = -1, white_top = -1, white_bottom = -1;
+    bool seen = false, inverted = false;
+};
+ShipImage ship_image(const ViewStudy& v);
 
 // 7. Heat shimmer (experiments/grin_shimmer.cpp): a warm turbulent plume over a road as a
 // sampled temperature grid; the target points' apparent displacement against the plume's
@@ -227,6 +235,8 @@ struct Findings {
     bool views_complete = false;          // every view finite, no ray out of steps
     bool limb_blue_on_top = false;        // the rendered upper limb: blue first, red only lower down
     SunsetLimb limb;                      // what the limb view shows (sunset_limb)
+    bool sea_view_inverted = false;       // the rendered ship over the cold sea is seen upside down
+    ShipImage ship;                       // what the sea view shows (ship_image)
     bool shimmer_linear = false;          // the displacement's exponent within 0.05 of 1
     bool shimmer_vdb_same = false;        // the .vdb read back: same grid, index within 1e-9
 };
@@ -261,6 +271,15 @@ SunStudy sun_study(bool quick);
 RefractionStudy refraction_study(bool quick);
 ConvergenceStudy convergence_study(bool quick);
 std::vector<ViewStudy> view_study(bool quick, int threads);
+// The superior mirage study's air over the cold sea (grin_sky.cpp): n at the radii r from
+// the Earth's centre (a tabulated radial profile, 0–500 m above the sea), the eye's height,
+// the ship's distance, the inversion's ΔT and height, for its rendered view.
+struct SeaAir {
+    Vec3 centre;
+    std::vector<double> r, n;
+    double eye_height = 0, distance = 0, delta_T = 0, inversion_height = 0;
+};
+SeaAir sea_air(double lambda_um);
 // Its last two: the setting sun whole and its upper limb (sunset_view, sunset_limb_view).
 std::vector<ViewStudy> sunset_views(bool quick, int threads);
 // One rendered view: `scene` (kept in the result) as `parsed` (read from it, with the file

@@ -356,6 +356,15 @@ void write(const Result& r, const std::string& dir) {
            << " |\n";
     }
     md << "\n"
+       << (f.sea_view_inverted
+                   ? "The ship 25 km away over the cold sea (sea_view.png) is seen upside down: down the image's centre column its white superstructure (rows " +
+                             std::to_string(f.ship.white_top) + "–" + std::to_string(f.ship.white_bottom) +
+                             ") lies under its red hull (rows " + std::to_string(f.ship.red_top) + "–" +
+                             std::to_string(f.ship.red_bottom) + "): the superior mirage's inverted image, as the "
+                             "traced rays above find it.\n"
+                   : f.ship.seen ? "The ship over the cold sea (sea_view.png) is not seen upside down in its rendered view.\n"
+                                 : "The ship over the cold sea is not seen in its rendered view (sea_view.png).\n")
+       << "\n"
        << (f.limb_blue_on_top
                    ? "The setting sun's upper limb, rendered by the spectral eye pass through the standard air "
                      "(sunset_limb_view.png): its first lit pixel is blue (RGB " + gfmt(f.limb.top_rgb.x(), 3) + ", " +

@@ -72,6 +72,17 @@ g::Profile inversion_air(const MirageSpec& m, double dT, double lambda, const st
     return g::tabulated_radial(kCentre, r, n, where);
 }
 
+}  // namespace
+
+SeaAir sea_air(double lambda_um) {
+    const MirageSpec m = mirage_spec(false);
+    const g::Profile p = inversion_air(m, m.dT, lambda_um, "grin superior mirage");
+    const auto& t = std::get<g::TabulatedRadial>(p);
+    return SeaAir{kCentre, t.r, t.n, m.eye, m.D, m.dT, m.hs};
+}
+
+namespace {
+
 // The first point where the ray from (x, d) meets the ground sphere, by tangent planes: the
 // ray advanced to the plane tangent at the last estimate, three times.
 Vec3 ground_point(const g::Profile& air, Vec3 estimate, const Vec3& x, const Vec3& d, double lambda) {

@@ -62,6 +62,53 @@ ViewStudy render_view(const std::string& name, const std::string& title, const j
     return grin_media::render_view(name, title, scene, parse_scene(scene, name + ".json"), threads);
 }
 
+// A superior mirage: a ship 25 km away over the cold sea of the superior-mirage study (an
+// inversion 10 K warmer above 20 m: a tabulated radial profile over the Earth, 0–500 m),
+// seen from 3 m. The Earth is a dark diffuse sphere inside the air; the ship a red hull
+// (80 m wide, 12 m high) with a white superstructure (16 m wide, up to 35 m) on top, both
+// inside the air. The camera looks along +x at apparent altitude `look_deg`, 0.6° across.
+json sea_scene(int w, int h, double look_deg) {
+    const SeaAir air = sea_air(0.55);
+    const double R = grin::kEarthRadius_m, th = air.distance / R, look = look_deg * kPi / 180;
+    const Vec3 up(std::sin(th), std::cos(th), 0), ahead(std::cos(th), -std::sin(th), 0), side(0, 0, 1);
+    const Vec3 base = air.centre + R * up;
+    const auto box = [&](double half_side, double half_ahead, double bottom, double top) {
+        const Vec3 c = base + 0.5 * (bottom + top) * up;
+        json planes = json::array();
+        for (const auto& [n, half] : {std::pair{up, 0.5 * (top - bottom)}, std::pair{ahead, half_ahead}, std::pair{side, half_side}})
+            for (const double sg : {1.0, -1.0})
+                planes.push_back({sg * n.x(), sg * n.y(), sg * n.z(), sg * n.dot(c) + half});
+        return planes;
+    };
+    return json{
+        {"camera",
+         {{"location", {0, air.eye_height, 0}},
+          {"look_at", {1000 * std::cos(look), air.eye_height + 1000 * std::sin(look), 0}},
+          {"angle", 0.6},
+          {"width", w},
+          {"height", h}}},
+        {"background", {{"type", "gradient"}, {"bottom", {0.85, 0.9, 0.95}}, {"top", {0.45, 0.62, 0.9}}}},
+        {"materials",
+         {{"air",
+           {{"type", "grin"},
+            {"tolerance", 1e-7},
+            {"shadows", false},
+            {"profile", {{"kind", "tabulated-radial"}, {"centre", {air.centre.x(), air.centre.y(), air.centre.z()}},
+                         {"r", air.r}, {"n", air.n}}}}},
+          {"sea", {{"type", "diffuse"}, {"color", {0.1, 0.16, 0.22}}, {"ambient", 0.6}}},
+          {"hull", {{"type", "diffuse"}, {"color", {0.8, 0.1, 0.08}}, {"ambient", 0.3}}},
+          {"deck", {{"type", "diffuse"}, {"color", {0.95, 0.95, 0.95}}, {"ambient", 0.3}}}}},
+        {"objects",
+         json::array({{{"type", "sphere"}, {"center", {air.centre.x(), air.centre.y(), air.centre.z()}},
+                       {"radius", air.r.back()}, {"material", "air"}},
+                      {{"type", "sphere"}, {"center", {air.centre.x(), air.centre.y(), air.centre.z()}}, {"radius", R},
+                       {"material", "sea"}},
+                      {{"type", "polyhedron"}, {"material", "hull"}, {"planes", box(40, 8, -1, 12)}},
+                      {{"type", "polyhedron"}, {"material", "deck"}, {"planes", box(8, 5, 12, 35)}}})},
+        {"lights", json::array({{{"type", "directional"}, {"direction", {1, -0.4, 0.3}}}})},
+        {"render", {{"max_depth", 4}}}};
+}
+
 // The setting sun from 10 m over the sea (the scene in metres): the Earth a dark diffuse
 // sphere inside the 1976 standard air (the "earth-atmosphere" profile, dispersing by
 // Ciddor's index, to 100 km), the sun an emitter of the true angular radius (0.2666°) at
@@ -141,6 +188,8 @@ std::vector<ViewStudy> view_study(bool quick, int threads) {
     std::vector<ViewStudy> v{
             render_view("luneburg_view", "A Luneburg lens over a checker floor", luneburg_scene(w, h), threads),
             render_view("road_view", "An inferior mirage over a hot road", road_scene(w, h), threads)};
+    v.push_back(render_view("sea_view", "A superior mirage: a ship 25 km away over a cold sea, 0.6° across",
+                            sea_scene(quick ? 48 : 160, quick ? 36 : 120, 0.05), threads));
     for (ViewStudy& s : sunset_views(quick, threads)) v.push_back(std::move(s));
     return v;
 }
@@ -157,6 +206,25 @@ std::vector<ViewStudy> sunset_views(bool quick, int threads) {
     v.push_back(render_view("sunset_limb_view", "The setting sun's upper limb, 0.03° across (108″)",
                             sunset_scene(lw, lh, std::isfinite(limb) ? limb : 0.42, 0.03), threads));
     return v;
+}
+
+ShipImage ship_image(const ViewStudy& v) {
+    ShipImage s;
+    const Image& img = v.image;
+    const int x = img.width / 2;
+    for (int y = 0; y < img.height; ++y) {
+        const Vec3 c = img.at(x, y);
+        if (c.x() > 0.3 && c.x() > 2.5 * c.y()) {  // the hull's red
+            if (s.red_top < 0) s.red_top = y;
+            s.red_bottom = y;
+        } else if (c.minCoeff() > 0.6) {  // the superstructure's white
+            if (s.white_top < 0) s.white_top = y;
+            s.white_bottom = y;
+        }
+    }
+    s.seen = s.red_top >= 0 && s.white_top >= 0;
+    s.inverted = s.seen && s.white_top > s.red_bottom;
+    return s;
 }
 
 SunsetLimb sunset_limb(const ViewStudy& v) {

@@ -75,7 +75,14 @@ TEST_CASE("grin experiment's rendered mirage: the ball 500 m down a hot road sho
           "through the renderer's own walk",
           "[experiments][grin]") {
     const std::vector<ViewStudy> views = view_study(true, 2);
-    REQUIRE(views.size() == 4);
+    REQUIRE(views.size() == 5);
+    // The superior mirage's view: the ship over the cold sea seen upside down.
+    REQUIRE(views[2].name == "sea_view");
+    const ShipImage ship = ship_image(views[2]);
+    INFO("ship rows: red " << ship.red_top << "-" << ship.red_bottom << ", white " << ship.white_top << "-"
+                           << ship.white_bottom);
+    CHECK(ship.seen);
+    CHECK(ship.inverted);
     for (const ViewStudy& v : views) {
         CHECK(v.finite);
         CHECK(v.grin_exhausted == 0);
