@@ -1,6 +1,7 @@
 // refract bench --grin: the gradient-index profiles' index-and-gradient evaluations per
 // second on one core, and the ray equation's adaptive steps against fixed steps at the
 // same error (docs/grin.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
@@ -10,6 +11,8 @@
 
 #include "cli/bench_sections.h"
 #include "cli/bench_timing.h"
+#include <refract/core/grin/atmosphere.h>
+#include <refract/core/grin/grid.h>
 #include <refract/core/grin/profile.h>
 #include <refract/core/grin/ray_equation.h>
 #include <refract/core/grin/step_study.h>
@@ -26,6 +29,24 @@ struct Case {
     Profile profile;
 };
 
+// A field sampled on 65³ points over [−1.1, 1.1]³: the Luneburg index, or as a temperature
+// grid 300 K + 30 K·(2 − r²) (a warm core), each interpolated by the tricubic spline.
+Profile sampled_luneburg(GridQuantity q) {
+    GridSamples s;
+    const int m = 65;
+    s.dims = {m, m, m};
+    s.origin = Vec3::Constant(-1.1);
+    s.spacing = Vec3::Constant(2.2 / (m - 1));
+    for (int k = 0; k < m; ++k)
+        for (int j = 0; j < m; ++j)
+            for (int i = 0; i < m; ++i) {
+                const Vec3 x = s.origin + Vec3(i, j, k).cwiseProduct(s.spacing);
+                const double r2 = std::min(x.squaredNorm(), 1.2);
+                s.values.push_back(q == GridQuantity::index ? std::sqrt(2 - r2) : 300.0 + 30.0 * (2 - r2));
+            }
+    return sampled_grid(std::move(s), q, 288.15, 101325.0, "values", "bench");
+}
+
 std::vector<Case> profiles() {
     std::vector<double> r, n;
     for (int i = 0; i <= 200; ++i) {
@@ -38,7 +59,11 @@ std::vector<Case> profiles() {
             {"Maxwell fish-eye", MaxwellFishEye{Vec3::Zero(), {2.0, 0.004}, 1.0}},
             {"sech rod", SechRod{Vec3::Zero(), Vec3::UnitZ(), {1.5, 0.004}, 1.0}},
             {"parabolic rod", ParabolicRod{Vec3::Zero(), Vec3::UnitZ(), {1.5, 0.004}, 0.5}},
-            {"tabulated radial (201 radii)", tabulated_radial(Vec3::Zero(), r, n, "bench")}};
+            {"tabulated radial (201 radii)", tabulated_radial(Vec3::Zero(), r, n, "bench")},
+            {"sampled index grid (65^3)", sampled_luneburg(GridQuantity::index)},
+            {"sampled temperature grid (65^3)", sampled_luneburg(GridQuantity::temperature)},
+            // The unit ball 0 to 2 m above the ground.
+            {"Earth's air (1976 standard)", EarthAtmosphere{Vec3(0, 0, -1 - kEarthRadius_m), Atmosphere{}}}};
 }
 
 // Points in the unit ball from a fixed linear congruential sequence.
