@@ -72,7 +72,7 @@ std::vector<Medium> media(const Scene& scene) {
         if (!g) continue;
         const std::string where = object_where(scene, k);
         Medium md{static_cast<int>(k), std::visit([&](const auto& s) { return region_of(s, where); }, o.shape), g->profile,
-                  g->settings};
+                  g->settings, {}};
         validate(md.region, where);
         validate(md.profile, md.region, 0.36, 0.83, f + ": /materials/" + clip_echo(m.name) + "/profile");
         out.push_back(std::move(md));
