@@ -19,6 +19,10 @@ using P3 = K::Point_3;
 using V3 = K::Vector_3;
 using Pl = K::Plane_3;
 using Loop = std::vector<P3>;
+// Exact points in lexicographic order (maps keyed by a vertex).
+struct LessPoint {
+    bool operator()(const P3& a, const P3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
+};
 
 // The nearest double of an exact number (forces the exact value, so the lazy interval is tight).
 double dbl(const FT& x);

@@ -73,10 +73,6 @@ std::string tier_text(const GemcadDesign& d, int k) {
            (t.line > 0 ? ", line " + std::to_string(t.line) : std::string()) + ")";
 }
 
-struct LessPoint {
-    bool operator()(const P3& a, const P3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
-};
-
 // A point strictly inside every plane, if the solid has any volume.
 boost::optional<P3> interior_point(const std::vector<Pl>& planes) {
     bool origin = true;
@@ -141,7 +137,8 @@ void merge_close_vertices(Gem& gem, double tol) {
 
 // Closed (every edge shared by exactly two facets, in opposite directions; Euler
 // characteristic 2) and convex (every vertex on or inside every facet plane, within `tol`).
-void check_closed_convex(const Gem& gem, double tol) {
+// The facets marked in `exempt` (a cleft's; null: none) are left out of the convexity test.
+void check_closed_convex(const Gem& gem, double tol, const std::vector<bool>* exempt = nullptr) {
     std::map<std::pair<int, int>, int> edges;
     for (const GemFacet& f : gem.facets)
         for (std::size_t k = 0; k < f.vertex_ids.size(); ++k)
@@ -154,10 +151,14 @@ void check_closed_convex(const Gem& gem, double tol) {
     const long V = static_cast<long>(gem.mesh.vertices.size()), E = static_cast<long>(edges.size() / 2),
                F = static_cast<long>(gem.facets.size());
     if (V - E + F != 2) refuse("Euler characteristic " + std::to_string(V - E + F) + ", not 2");
-    for (const GemFacet& f : gem.facets)
+    for (std::size_t k = 0; k < gem.facets.size(); ++k) {
+        if (exempt && (*exempt)[k]) continue;
+        const GemFacet& f = gem.facets[k];
         for (const Vec3& p : gem.mesh.vertices)
             if (f.plane.normal.dot(p) - f.plane.offset > tol)
-                refuse("not convex: a vertex lies outside facet '" + f.label + "'");
+                refuse(std::string(exempt ? "not convex away from the cleft" : "not convex") +
+                       ": a vertex lies outside facet '" + f.label + "'");
+    }
 }
 
 struct Extent {
@@ -393,27 +394,9 @@ void grind_cleft(const GemcadDesign& d, DesignGem& out) {
     }
     if (gem.mesh.triangles.size() != diff.triangles.size()) refuse("a facet's triangles are not one patch");
 
-    // Closed: every directed edge once, its reverse once; Euler characteristic 2.
-    std::map<std::pair<int, int>, int> edges;
-    for (const auto& t : gem.mesh.triangles)
-        for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
-    for (const auto& [e, count] : edges) {
-        const auto back = edges.find({e.second, e.first});
-        if (count != 1 || back == edges.end() || back->second != 1)
-            refuse("the stone does not close: an edge is not shared by exactly two triangles");
-    }
-    const long V = static_cast<long>(vertices.size()), E = static_cast<long>(edges.size() / 2),
-               T = static_cast<long>(gem.mesh.triangles.size());
-    if (V - E + T != 2) refuse("Euler characteristic " + std::to_string(V - E + T) + ", not 2");
-    // Convex except at its cleft: every vertex inside every facet plane but the cleft's.
     double size = 0;
     for (const Vec3& q : vertices) size = std::max(size, q.norm());
-    for (std::size_t f = 0; f < gem.facets.size(); ++f) {
-        if (on_cleft[f]) continue;
-        for (const Vec3& q : vertices)
-            if (gem.facets[f].plane.normal.dot(q) - gem.facets[f].plane.offset > 1e-9 * size)
-                refuse("not convex away from the cleft: a vertex lies outside facet '" + gem.facets[f].label + "'");
-    }
+    check_closed_convex(gem, 1e-9 * size, &on_cleft);
     out.gem = std::move(gem);
     out.planes += static_cast<int>(cl.planes.size());
     out.volume = dbl(v);

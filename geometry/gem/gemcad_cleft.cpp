@@ -15,10 +15,6 @@ namespace {
 using Nef = CGAL::Nef_polyhedron_3<K>;
 using Mesh = CGAL::Surface_mesh<P3>;
 
-struct LessPoint {
-    bool operator()(const P3& a, const P3& b) const { return CGAL::compare_xyz(a, b) == CGAL::SMALLER; }
-};
-
 // The loops as a closed polygon mesh (exactly equal points one vertex).
 Mesh mesh_of_loops(const std::vector<Loop>& loops, Fail fail) {
     Mesh m;
